@@ -1,0 +1,216 @@
+//! Geometry -> particles: the tank, obstacles and fluid boxes of a [`Scene`] sampled on a `dp`
+//! lattice.
+//!
+//! The lattice sits at `(i + 1/2) dp` from the tank's inner corner, so a wall face lies halfway
+//! between the last fluid and first wall particles (the DBC gap is `dp`), and a fluid box
+//! `[0, W]` holds exactly `W / dp` particles across. Wall particles fill `layers` lattice layers
+//! behind every face (the tank box in the max-norm, so corners are full; obstacles by parry's
+//! signed distance), enough to cover the kernel support.
+
+use crate::error::{Error, Result};
+use crate::math::{Dim, Real, Vector};
+use crate::scene::{Obstacle, Scene};
+
+/// Particles sampled from a scene.
+#[derive(Debug, Clone)]
+pub struct Sampled<D: Dim> {
+    pub walls: Vec<D::V>,
+    /// Water level above each wall particle (for hydrostatic initialisation), or `None` when
+    /// no fluid lies above it.
+    pub wall_surface: Vec<Option<Real>>,
+    pub fluid: Vec<D::V>,
+    /// Top of the fluid box each fluid particle came from.
+    pub fluid_surface: Vec<Real>,
+}
+
+enum Solid<D: Dim> {
+    Box { min: D::V, max: D::V },
+    Plane { point: D::V, normal: D::V },
+}
+
+impl<D: Dim> Solid<D> {
+    /// Signed distance to the solid's surface, negative inside.
+    fn signed_distance(&self, p: D::V) -> Real {
+        match self {
+            Solid::Box { min, max } => D::box_signed_distance(*min, *max, p),
+            Solid::Plane { point, normal } => D::plane_signed_distance(*point, *normal, p),
+        }
+    }
+}
+
+/// Samples the scene's walls and fluid. Errors when the geometry leaves no fluid.
+pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
+    let dim = D::DIM;
+    let dp = scene.dp;
+    let layers = scene.layers() as i64;
+    let tank_min = D::V::from_slice(&scene.tank.min);
+    let tank_max = D::V::from_slice(&scene.tank.max);
+    let solids: Vec<Solid<D>> = scene
+        .obstacles
+        .iter()
+        .map(|o| match o {
+            Obstacle::Box { min, max } => Solid::Box { min: D::V::from_slice(min), max: D::V::from_slice(max) },
+            Obstacle::Plane { point, normal } => {
+                let n = D::V::from_slice(normal);
+                Solid::Plane { point: D::V::from_slice(point), normal: n * (1.0 / n.length()) }
+            }
+        })
+        .collect();
+    let fluid_boxes: Vec<(D::V, D::V)> =
+        scene.fluid.iter().map(|b| (D::V::from_slice(&b.min), D::V::from_slice(&b.max))).collect();
+
+    // Lattice index ranges along each axis: `layers` beyond the tank on every side but the top.
+    let mut lo = [0i64; 3];
+    let mut hi = [1i64; 3];
+    for k in 0..dim {
+        let n = ((tank_max.get(k) - tank_min.get(k)) / dp - 1e-9).ceil() as i64;
+        lo[k] = -layers;
+        hi[k] = if k == dim - 1 { n } else { n + layers };
+    }
+    let estimated: i64 = (0..dim).map(|k| hi[k] - lo[k]).product();
+    if estimated > 2_000_000_000 {
+        return Err(Error::invalid(
+            "dp",
+            format!("dp = {dp} would need a lattice of {estimated} points around the tank; refusing"),
+        ));
+    }
+
+    let thickness = layers as Real * dp;
+    let half = 0.5 * dp;
+    let tol = 1e-9 * dp;
+    let mut out = Sampled { walls: Vec::new(), wall_surface: Vec::new(), fluid: Vec::new(), fluid_surface: Vec::new() };
+    let vertical = dim - 1;
+    let mut idx = [0i64; 3];
+    for iz in lo[2]..hi[2] {
+        idx[2] = iz;
+        for iy in lo[1]..hi[1] {
+            idx[1] = iy;
+            for ix in lo[0]..hi[0] {
+                idx[0] = ix;
+                let mut p = D::V::ZERO;
+                for k in 0..dim {
+                    p.set(k, tank_min.get(k) + (idx[k] as Real + 0.5) * dp);
+                }
+                // Max-norm distance outside the tank's inner box (0 inside).
+                let mut outside = 0.0f64;
+                for k in 0..dim {
+                    outside = outside.max(tank_min.get(k) - p.get(k)).max(p.get(k) - tank_max.get(k));
+                }
+                let in_tank = outside <= 0.0;
+                let is_wall = if !in_tank {
+                    outside <= thickness && p.get(vertical) <= tank_max.get(vertical)
+                } else {
+                    solids.iter().any(|s| {
+                        let d = s.signed_distance(p);
+                        d < 0.0 && d >= -thickness
+                    })
+                };
+                if is_wall {
+                    out.walls.push(p);
+                    out.wall_surface.push(surface_above::<D>(&fluid_boxes, p, thickness));
+                    continue;
+                }
+                if !in_tank {
+                    continue;
+                }
+                let mut top: Option<Real> = None;
+                for (bmin, bmax) in &fluid_boxes {
+                    let inside = (0..dim).all(|k| p.get(k) > bmin.get(k) && p.get(k) < bmax.get(k));
+                    if inside {
+                        top = Some(top.map_or(bmax.vertical(), |t: Real| t.max(bmax.vertical())));
+                    }
+                }
+                let Some(top) = top else { continue };
+                // Keep fluid at least dp/2 from any solid surface (the lattice already does this
+                // for the tank's faces).
+                if solids.iter().any(|s| s.signed_distance(p) < half - tol) {
+                    continue;
+                }
+                out.fluid.push(p);
+                out.fluid_surface.push(top);
+            }
+        }
+    }
+    if out.fluid.is_empty() {
+        return Err(Error::invalid(
+            "fluid",
+            "the geometry leaves no fluid particle (fluid boxes are empty, outside the tank or inside obstacles)",
+        ));
+    }
+    Ok(out)
+}
+
+/// Highest fluid-box top over the horizontal position of `p` (within `margin`), if it is above `p`.
+fn surface_above<D: Dim>(boxes: &[(D::V, D::V)], p: D::V, margin: Real) -> Option<Real> {
+    let v = D::DIM - 1;
+    boxes
+        .iter()
+        .filter(|(bmin, bmax)| (0..v).all(|k| p.get(k) > bmin.get(k) - margin && p.get(k) < bmax.get(k) + margin))
+        .map(|(_, bmax)| bmax.vertical())
+        .filter(|&top| top > p.vertical())
+        .fold(None, |acc: Option<Real>, t| Some(acc.map_or(t, |a| a.max(t))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Dim2, Dim3};
+
+    fn scene(json: &str) -> Scene {
+        Scene::from_json(json).expect("valid scene")
+    }
+
+    #[test]
+    fn dambreak_2d_counts() {
+        let s = scene(
+            r#"{"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [4, 3]},
+                "fluid": [{"min": [0, 0], "max": [1, 2]}], "boundary_layers": 3}"#,
+        );
+        let g = sample::<Dim2>(&s).expect("sampled");
+        assert_eq!(g.fluid.len(), 10 * 20);
+        // floor: (40 + 6) x 3, two side walls: 3 x 30 each
+        assert_eq!(g.walls.len(), 46 * 3 + 2 * 3 * 30);
+        let xmax = g.fluid.iter().map(|p| p.x).fold(0.0, f64::max);
+        assert!((xmax - 0.95).abs() < 1e-12);
+    }
+
+    #[test]
+    fn beach_plane_removes_fluid_and_adds_walls() {
+        let flat = scene(
+            r#"{"dim": 2, "dp": 0.05, "tank": {"min": [0, 0], "max": [4, 1]},
+                "fluid": [{"min": [0, 0], "max": [4, 0.5]}]}"#,
+        );
+        let beach = scene(
+            r#"{"dim": 2, "dp": 0.05, "tank": {"min": [0, 0], "max": [4, 1]},
+                "obstacles": [{"shape": "plane", "point": [2, 0], "normal": [-0.5, 1]}],
+                "fluid": [{"min": [0, 0], "max": [4, 0.5]}]}"#,
+        );
+        let f = sample::<Dim2>(&flat).expect("flat");
+        let b = sample::<Dim2>(&beach).expect("beach");
+        // slope 1/2 from x = 2 reaches z = 0.5 at x = 3: a triangle of 0.25 m^2 and the dry
+        // 0.5 m^2 beyond x = 3 are removed, plus a strip of about dp/2 along the wet slope.
+        let removed = (f.fluid.len() - b.fluid.len()) as f64 * 0.05 * 0.05;
+        assert!((removed - 0.75 - 0.025 * 1.12).abs() < 0.02, "removed {removed}");
+        assert!(b.walls.len() > f.walls.len());
+        for p in &b.fluid {
+            let d = Dim2::plane_signed_distance(glam::DVec2::new(2.0, 0.0), glam::DVec2::new(-0.5, 1.0).normalize(), *p);
+            assert!(d >= 0.025 - 1e-12);
+        }
+    }
+
+    #[test]
+    fn tank_3d_and_no_fluid_error() {
+        let s = scene(
+            r#"{"dim": 3, "dp": 0.1, "tank": {"min": [0, 0, 0], "max": [1, 0.5, 1]},
+                "fluid": [{"min": [0, 0, 0], "max": [1, 0.5, 0.5]}]}"#,
+        );
+        let g = sample::<Dim3>(&s).expect("sampled");
+        assert_eq!(g.fluid.len(), 10 * 5 * 5);
+        let hidden = scene(
+            r#"{"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [1, 1]},
+                "obstacles": [{"shape": "box", "min": [0, 0], "max": [1, 0.6]}],
+                "fluid": [{"min": [0, 0], "max": [1, 0.5]}]}"#,
+        );
+        assert!(matches!(sample::<Dim2>(&hidden), Err(Error::InvalidScene { .. })));
+    }
+}

@@ -1,0 +1,256 @@
+//! Dimension aliases: one source for 2D and 3D.
+//!
+//! Everything dimension-specific lives here (vectors, integer cell coordinates, the symmetric
+//! tensor used by the SPS closure, and the parry shape queries used to sample geometry). The rest
+//! of the core is written once against [`Dim`] and monomorphised for [`Dim2`] and [`Dim3`].
+//! The last vector component is always vertical (z), gravity acts along it.
+
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+use glam::{DVec2, DVec3};
+
+/// Floating-point type of the solver state.
+pub type Real = f64;
+
+/// Vector operations the solver needs, implemented for glam's `DVec2` and `DVec3`.
+pub trait Vector:
+    Copy
+    + Send
+    + Sync
+    + Default
+    + Debug
+    + PartialEq
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Real, Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + bytemuck::Pod
+    + 'static
+{
+    const ZERO: Self;
+    fn dot(self, other: Self) -> Real;
+    fn length_squared(self) -> Real;
+    fn length(self) -> Real {
+        self.length_squared().sqrt()
+    }
+    /// Component `i` (0 = x, last = vertical).
+    fn get(self, i: usize) -> Real;
+    fn set(&mut self, i: usize, value: Real);
+    /// Vertical component (y in 2D, z in 3D).
+    fn vertical(self) -> Real;
+    fn is_finite(self) -> bool;
+    fn min(self, other: Self) -> Self;
+    fn max(self, other: Self) -> Self;
+    fn splat(v: Real) -> Self;
+    /// Builds a vector from exactly `DIM` values.
+    fn from_slice(values: &[Real]) -> Self;
+    fn as_slice(&self) -> &[Real] {
+        bytemuck::cast_slice(std::slice::from_ref(self))
+    }
+}
+
+macro_rules! impl_vector {
+    ($t:ty, $dim:expr) => {
+        impl Vector for $t {
+            const ZERO: Self = <$t>::ZERO;
+            #[inline(always)]
+            fn dot(self, other: Self) -> Real {
+                <$t>::dot(self, other)
+            }
+            #[inline(always)]
+            fn length_squared(self) -> Real {
+                <$t>::length_squared(self)
+            }
+            #[inline(always)]
+            fn get(self, i: usize) -> Real {
+                self[i]
+            }
+            #[inline(always)]
+            fn set(&mut self, i: usize, value: Real) {
+                self[i] = value;
+            }
+            #[inline(always)]
+            fn vertical(self) -> Real {
+                self[$dim - 1]
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                <$t>::min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                <$t>::max(self, other)
+            }
+            #[inline(always)]
+            fn splat(v: Real) -> Self {
+                <$t>::splat(v)
+            }
+            fn from_slice(values: &[Real]) -> Self {
+                <$t>::from_slice(values)
+            }
+        }
+    };
+}
+impl_vector!(DVec2, 2);
+impl_vector!(DVec3, 3);
+
+/// Symmetric tensor storage for the SPS stress (3 components in 2D, 6 in 3D).
+pub trait SymTensor: Copy + Send + Sync + Default + Debug + 'static {}
+impl SymTensor for [Real; 3] {}
+impl SymTensor for [Real; 6] {}
+
+/// A spatial dimension: its vector type, cell coordinates, symmetric tensors and shape queries.
+pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
+    const DIM: usize;
+    /// Number of cells in the neighbour stencil (3^DIM).
+    const STENCIL: usize;
+    type V: Vector;
+    type Sym: SymTensor;
+
+    /// Symmetric part of the outer product `a (x) b`, scaled by `w`, added to `s`.
+    fn sym_add_outer(s: &mut Self::Sym, a: Self::V, b: Self::V, w: Real);
+    /// `s . v`
+    fn sym_dot(s: &Self::Sym, v: Self::V) -> Self::V;
+    /// Trace and squared Frobenius norm `S_ij S_ij`.
+    fn sym_trace_and_norm2(s: &Self::Sym) -> (Real, Real);
+    /// `s` scaled by `a`, plus `b` on the diagonal.
+    fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym;
+
+    /// Signed distance from `p` to the surface of the axis-aligned box `[min, max]`
+    /// (negative inside), by parry's point projection.
+    fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real;
+    /// Signed distance from `p` to the plane through `point` with unit `normal`
+    /// (positive on the normal's side), by parry's half-space projection.
+    fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real;
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dim2;
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dim3;
+
+macro_rules! shape_queries {
+    ($parry:ident) => {
+        fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real {
+            use $parry::query::PointQuery;
+            let half = (max - min) * 0.5;
+            let centre = (max + min) * 0.5;
+            let cuboid = $parry::shape::Cuboid::new(half);
+            let proj = cuboid.project_local_point(p - centre, false);
+            let d = (proj.point - (p - centre)).length();
+            if proj.is_inside {
+                -d
+            } else {
+                d
+            }
+        }
+        fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real {
+            use $parry::query::PointQuery;
+            let plane = $parry::shape::HalfSpace::new(normal);
+            let proj = plane.project_local_point(p - point, false);
+            let d = (proj.point - (p - point)).length();
+            if proj.is_inside {
+                -d
+            } else {
+                d
+            }
+        }
+    };
+}
+
+impl Dim for Dim2 {
+    const DIM: usize = 2;
+    const STENCIL: usize = 9;
+    type V = DVec2;
+    /// xx, yy, xy
+    type Sym = [Real; 3];
+
+    #[inline(always)]
+    fn sym_add_outer(s: &mut Self::Sym, a: DVec2, b: DVec2, w: Real) {
+        s[0] += w * a.x * b.x;
+        s[1] += w * a.y * b.y;
+        s[2] += w * 0.5 * (a.x * b.y + a.y * b.x);
+    }
+    #[inline(always)]
+    fn sym_dot(s: &Self::Sym, v: DVec2) -> DVec2 {
+        DVec2::new(s[0] * v.x + s[2] * v.y, s[2] * v.x + s[1] * v.y)
+    }
+    #[inline(always)]
+    fn sym_trace_and_norm2(s: &Self::Sym) -> (Real, Real) {
+        (s[0] + s[1], s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2])
+    }
+    #[inline(always)]
+    fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym {
+        [a * s[0] + b, a * s[1] + b, a * s[2]]
+    }
+    shape_queries!(parry2d_f64);
+}
+
+impl Dim for Dim3 {
+    const DIM: usize = 3;
+    const STENCIL: usize = 27;
+    type V = DVec3;
+    /// xx, yy, zz, xy, xz, yz
+    type Sym = [Real; 6];
+
+    #[inline(always)]
+    fn sym_add_outer(s: &mut Self::Sym, a: DVec3, b: DVec3, w: Real) {
+        s[0] += w * a.x * b.x;
+        s[1] += w * a.y * b.y;
+        s[2] += w * a.z * b.z;
+        s[3] += w * 0.5 * (a.x * b.y + a.y * b.x);
+        s[4] += w * 0.5 * (a.x * b.z + a.z * b.x);
+        s[5] += w * 0.5 * (a.y * b.z + a.z * b.y);
+    }
+    #[inline(always)]
+    fn sym_dot(s: &Self::Sym, v: DVec3) -> DVec3 {
+        DVec3::new(
+            s[0] * v.x + s[3] * v.y + s[4] * v.z,
+            s[3] * v.x + s[1] * v.y + s[5] * v.z,
+            s[4] * v.x + s[5] * v.y + s[2] * v.z,
+        )
+    }
+    #[inline(always)]
+    fn sym_trace_and_norm2(s: &Self::Sym) -> (Real, Real) {
+        (
+            s[0] + s[1] + s[2],
+            s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]),
+        )
+    }
+    #[inline(always)]
+    fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym {
+        [a * s[0] + b, a * s[1] + b, a * s[2] + b, a * s[3], a * s[4], a * s[5]]
+    }
+    shape_queries!(parry3d_f64);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_distance_signs() {
+        let min = DVec2::new(0.0, 0.0);
+        let max = DVec2::new(2.0, 1.0);
+        assert!((Dim2::box_signed_distance(min, max, DVec2::new(1.0, 0.5)) + 0.5).abs() < 1e-12);
+        assert!((Dim2::box_signed_distance(min, max, DVec2::new(-0.25, 0.5)) - 0.25).abs() < 1e-12);
+        let d3 = Dim3::box_signed_distance(DVec3::ZERO, DVec3::ONE, DVec3::new(0.5, 0.5, 1.5));
+        assert!((d3 - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn plane_distance_signs() {
+        let n = DVec2::new(-1.0, 1.0).normalize();
+        let d = Dim2::plane_signed_distance(DVec2::ZERO, n, DVec2::new(0.0, 1.0));
+        assert!((d - 1.0 / 2f64.sqrt()).abs() < 1e-12);
+        let d = Dim2::plane_signed_distance(DVec2::ZERO, n, DVec2::new(1.0, 0.0));
+        assert!((d + 1.0 / 2f64.sqrt()).abs() < 1e-12);
+    }
+}

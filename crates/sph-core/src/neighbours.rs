@@ -1,0 +1,236 @@
+//! Cell-linked list built by a stable counting sort. Cells have side `support / reach` and a
+//! particle's neighbours lie within `reach` cells along each axis: `reach = 1` is the classic
+//! `2h` cell with a 3^dim stencil; `reach = 2` (the solver's choice) checks `(5/6)^dim` as many
+//! candidates (42 % fewer in 3D) for 25 rows instead of 9.
+//!
+//! Particles live in three contiguous groups (fixed boundary, moving boundary, fluid). Within a
+//! group they are sorted by cell, x fastest, so the three cells of a stencil row are one
+//! contiguous range. `starts[g][c]` is the first index of cell `c` in group `g` (absolute index
+//! into the particle arrays). Neighbours of a point are visited row by row (z, y ascending, then
+//! x), and within a cell in storage order: a fixed order, so sums do not depend on threads.
+//!
+//! Positions outside the grid are clamped to the edge cells. Clamping is monotone and moves a
+//! coordinate by at most the distance it exceeds the edge, so two points within the support stay
+//! within `reach` cells: the search stays exact, it only gets slower for particles far outside.
+
+use crate::math::{Dim, Real, Vector};
+
+pub const GROUPS: usize = 3;
+pub const GROUP_FIXED: usize = 0;
+pub const GROUP_MOVING: usize = 1;
+pub const GROUP_FLUID: usize = 2;
+
+#[derive(Debug, Clone)]
+pub struct CellGrid<D: Dim> {
+    origin: D::V,
+    inv_cell: Real,
+    /// Stencil half-width in cells.
+    reach: usize,
+    /// Cells along x, y, z (z = 1 in 2D).
+    dims: [usize; 3],
+    n_cells: usize,
+    starts: [Vec<u32>; GROUPS],
+    /// Scratch: cell of each particle, and the counting-sort cursor per cell.
+    keys: Vec<u32>,
+    cursor: Vec<u32>,
+}
+
+impl<D: Dim> CellGrid<D> {
+    /// A grid covering `[lo, hi]` for `n` particles, finding all pairs closer than `support` with
+    /// cells of side `support / reach`.
+    pub fn new(lo: D::V, hi: D::V, support: Real, reach: usize, n: usize) -> Self {
+        let reach = reach.max(1);
+        let cell_size = support / reach as Real;
+        let mut dims = [1usize; 3];
+        for (k, d) in dims.iter_mut().enumerate().take(D::DIM) {
+            let extent = (hi.get(k) - lo.get(k)).max(0.0);
+            *d = ((extent / cell_size).floor() as usize).max(1);
+        }
+        let n_cells = dims[0] * dims[1] * dims[2];
+        let empty = || vec![0u32; n_cells + 1];
+        Self {
+            origin: lo,
+            inv_cell: 1.0 / cell_size,
+            reach,
+            dims,
+            n_cells,
+            starts: [empty(), empty(), empty()],
+            keys: vec![0; n],
+            cursor: vec![0; n_cells],
+        }
+    }
+
+    pub fn n_cells(&self) -> usize {
+        self.n_cells
+    }
+
+    /// Bytes held by the grid.
+    pub fn memory_bytes(&self) -> usize {
+        (self.starts.iter().map(|s| s.capacity()).sum::<usize>() + self.keys.capacity() + self.cursor.capacity())
+            * std::mem::size_of::<u32>()
+    }
+
+    #[inline(always)]
+    fn coord(&self, p: D::V, k: usize) -> usize {
+        let c = ((p.get(k) - self.origin.get(k)) * self.inv_cell).floor();
+        // NaN maps to 0 through `as`; monitors report NaN separately.
+        (c.max(0.0) as usize).min(self.dims[k] - 1)
+    }
+
+    #[inline(always)]
+    fn coords(&self, p: D::V) -> [usize; 3] {
+        let mut c = [0usize; 3];
+        for (k, ck) in c.iter_mut().enumerate().take(D::DIM) {
+            *ck = self.coord(p, k);
+        }
+        c
+    }
+
+    #[inline(always)]
+    pub fn cell_of(&self, p: D::V) -> usize {
+        let c = self.coords(p);
+        c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
+    }
+
+    /// Sorts group `g`, occupying `range` of the particle arrays, by cell. Writes into `perm`
+    /// (indexed by the new slot minus `range.start`) the old absolute index of each particle, and
+    /// updates the group's cell starts. Stable: particles in one cell keep their relative order.
+    pub fn sort_group(&mut self, g: usize, range: std::ops::Range<usize>, pos: &[D::V], perm: &mut [u32]) {
+        use rayon::prelude::*;
+        let mut all_keys = std::mem::take(&mut self.keys);
+        let keys = &mut all_keys[range.clone()];
+        let this = &*self;
+        keys.par_iter_mut().zip(pos[range.clone()].par_iter()).for_each(|(k, &p)| *k = this.cell_of(p) as u32);
+
+        // Counting sort: count per cell, exclusive prefix sum offset by the group's start.
+        let starts = &mut self.starts[g];
+        starts.fill(0);
+        for &k in keys.iter() {
+            starts[k as usize + 1] += 1;
+        }
+        let mut running = range.start as u32;
+        starts[0] = running;
+        for c in 0..self.n_cells {
+            running += starts[c + 1];
+            starts[c + 1] = running;
+        }
+        self.cursor.copy_from_slice(&starts[..self.n_cells]);
+        for (i, &k) in keys.iter().enumerate() {
+            let slot = self.cursor[k as usize];
+            self.cursor[k as usize] += 1;
+            perm[slot as usize - range.start] = (range.start + i) as u32;
+        }
+        self.keys = all_keys;
+    }
+
+    /// Calls `f(b)` for every particle `b` of group `g` in the cells around `p`, in a fixed order.
+    #[inline(always)]
+    pub fn for_each_near(&self, g: usize, p: D::V, mut f: impl FnMut(usize)) {
+        let c = self.coords(p);
+        let starts = &self.starts[g];
+        let r = self.reach;
+        let span = |k: usize| (c[k].saturating_sub(r), (c[k] + r).min(self.dims[k] - 1));
+        let (x_lo, x_hi) = span(0);
+        let (y_lo, y_hi) = span(1);
+        let (z_lo, z_hi) = if D::DIM == 3 { span(2) } else { (0, 0) };
+        for z in z_lo..=z_hi {
+            for y in y_lo..=y_hi {
+                let row = self.dims[0] * (y + self.dims[1] * z);
+                let begin = starts[row + x_lo] as usize;
+                let end = starts[row + x_hi + 1] as usize;
+                for b in begin..end {
+                    f(b);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Dim2, Dim3};
+    use glam::{DVec2, DVec3};
+    use proptest::prelude::*;
+
+    /// Sorts one fluid group and checks the neighbour sets against brute force.
+    fn check<D: Dim>(points: Vec<D::V>, lo: D::V, hi: D::V, radius: Real) {
+        for reach in [1, 2, 3] {
+            check_reach::<D>(&points, lo, hi, radius, reach);
+        }
+    }
+
+    fn check_reach<D: Dim>(points: &[D::V], lo: D::V, hi: D::V, radius: Real, reach: usize) {
+        let n = points.len();
+        let mut grid = CellGrid::<D>::new(lo, hi, radius, reach, n);
+        let mut perm = vec![0u32; n];
+        grid.sort_group(GROUP_FLUID, 0..n, points, &mut perm);
+        let sorted: Vec<D::V> = perm.iter().map(|&i| points[i as usize]).collect();
+        // empty groups: starts all zero, so iteration over them visits nothing
+        for a in 0..n {
+            let mut found = Vec::new();
+            grid.for_each_near(GROUP_FLUID, sorted[a], |b| {
+                if (sorted[a] - sorted[b]).length_squared() < radius * radius {
+                    found.push(b)
+                }
+            });
+            grid.for_each_near(GROUP_FIXED, sorted[a], |_| panic!("fixed group is empty"));
+            let mut brute: Vec<usize> = (0..n)
+                .filter(|&b| (sorted[a] - sorted[b]).length_squared() < radius * radius)
+                .collect();
+            let mut f2 = found.clone();
+            f2.sort();
+            brute.sort();
+            assert_eq!(f2, brute, "particle {a}, reach {reach}");
+            assert_eq!(found.len(), f2.len(), "no particle visited twice");
+        }
+        let mut seen = perm.clone();
+        seen.sort();
+        assert!(seen.iter().enumerate().all(|(i, &v)| i as u32 == v), "perm is a permutation");
+    }
+
+    #[test]
+    fn one_particle() {
+        check::<Dim2>(vec![DVec2::new(0.3, 0.3)], DVec2::ZERO, DVec2::ONE, 0.1);
+    }
+
+    #[test]
+    fn all_in_one_cell() {
+        let pts: Vec<DVec3> = (0..50).map(|i| DVec3::splat(0.5 + 1e-4 * i as f64)).collect();
+        check::<Dim3>(pts, DVec3::ZERO, DVec3::ONE, 0.2);
+    }
+
+    #[test]
+    fn on_cell_edges_and_outside_the_grid() {
+        let mut pts = Vec::new();
+        for i in 0..=10 {
+            for j in 0..=10 {
+                pts.push(DVec2::new(i as f64 * 0.1, j as f64 * 0.1));
+            }
+        }
+        pts.push(DVec2::new(-0.35, 0.2));
+        pts.push(DVec2::new(1.7, 1.25));
+        pts.push(DVec2::new(1.75, 1.3));
+        check::<Dim2>(pts, DVec2::ZERO, DVec2::ONE, 0.1);
+    }
+
+    #[test]
+    fn empty_cells_in_a_large_grid() {
+        let pts = vec![DVec3::new(0.05, 0.05, 0.05), DVec3::new(0.95, 0.95, 0.95), DVec3::new(0.9, 0.9, 0.9)];
+        check::<Dim3>(pts, DVec3::ZERO, DVec3::ONE, 0.1);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        #[test]
+        fn random_2d(coords in proptest::collection::vec((-0.2f64..1.2, -0.2f64..1.2), 1..300), r in 0.02f64..0.5) {
+            let pts = coords.into_iter().map(|(x, y)| DVec2::new(x, y)).collect();
+            check::<Dim2>(pts, DVec2::ZERO, DVec2::ONE, r);
+        }
+        #[test]
+        fn random_3d(coords in proptest::collection::vec((-0.2f64..1.2, -0.2f64..1.2, 0.0f64..1.0), 1..300), r in 0.05f64..0.5) {
+            let pts = coords.into_iter().map(|(x, y, z)| DVec3::new(x, y, z)).collect();
+            check::<Dim3>(pts, DVec3::ZERO, DVec3::ONE, r);
+        }
+    }
+}

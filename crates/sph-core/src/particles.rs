@@ -1,0 +1,69 @@
+//! Structure-of-arrays particle state.
+//!
+//! Storage order: fixed boundary `[0, n_fixed)`, moving boundary `[n_fixed, fluid_start)`, fluid
+//! `[fluid_start, n)`. Groups never mix; within a group particles are sorted by cell (see
+//! `neighbours.rs`), so `id` maps a storage slot back to the particle's creation order.
+//! Arrays are allocated once per run and never reallocated: Python reads them as NumPy views.
+
+use crate::math::{Dim, Real};
+
+/// Particle kind codes, as exposed to Python.
+pub const KIND_FLUID: u8 = 0;
+pub const KIND_FIXED: u8 = 1;
+pub const KIND_MOVING: u8 = 2;
+
+#[derive(Debug, Clone)]
+pub struct Particles<D: Dim> {
+    pub pos: Vec<D::V>,
+    pub vel: Vec<D::V>,
+    pub rho: Vec<Real>,
+    /// Pressure from the equation of state, refreshed before every force evaluation.
+    pub press: Vec<Real>,
+    /// Creation order of the particle in each storage slot.
+    pub id: Vec<u32>,
+    /// Kind of each slot (constant: groups do not move).
+    pub kind: Vec<u8>,
+    /// Acceleration of fluid particles (indexed from `fluid_start`).
+    pub acc: Vec<D::V>,
+    /// Density rate of every particle.
+    pub drho: Vec<Real>,
+    pub n_fixed: usize,
+    pub n_moving: usize,
+}
+
+impl<D: Dim> Particles<D> {
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.pos.is_empty()
+    }
+    pub fn fluid_start(&self) -> usize {
+        self.n_fixed + self.n_moving
+    }
+    pub fn n_fluid(&self) -> usize {
+        self.len() - self.fluid_start()
+    }
+
+    /// Bytes held by the arrays (capacity based).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let v = size_of::<D::V>();
+        (self.pos.capacity() + self.vel.capacity() + self.acc.capacity()) * v
+            + (self.rho.capacity() + self.press.capacity() + self.drho.capacity()) * size_of::<Real>()
+            + self.id.capacity() * size_of::<u32>()
+            + self.kind.capacity()
+    }
+}
+
+/// Applies `perm` (new slot -> old absolute index) to `data[range]` through `scratch`.
+pub fn permute<T: Copy + Send + Sync>(data: &mut [T], range: std::ops::Range<usize>, perm: &[u32], scratch: &mut Vec<T>) {
+    use rayon::prelude::*;
+    let n = range.len();
+    scratch.clear();
+    scratch.reserve(n);
+    // `extend` from an exact-size parallel iterator writes in order without reallocating.
+    let src = &*data;
+    scratch.par_extend(perm[..n].par_iter().map(|&old| src[old as usize]));
+    data[range].copy_from_slice(scratch);
+}

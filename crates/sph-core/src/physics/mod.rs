@@ -1,0 +1,110 @@
+//! Physics of the WCSPH step: equation of state, continuity with density diffusion, momentum with
+//! one viscosity model (DESIGN.md section 2). Options are compile-time constants of the force
+//! loop, so a term that is off costs nothing in the hot loop.
+
+pub mod eos;
+pub mod forces;
+
+use crate::math::Real;
+use crate::scene::{Diffusion, Scene, Viscosity};
+
+/// Viscosity model as a const generic of the force loop.
+pub const VISC_ARTIFICIAL: u8 = 0;
+pub const VISC_LAMINAR: u8 = 1;
+pub const VISC_LAMINAR_SPS: u8 = 2;
+
+/// Density diffusion as a const generic of the force loop.
+pub const DIFF_NONE: u8 = 0;
+pub const DIFF_MOLTENI: u8 = 1;
+pub const DIFF_FOURTAKAS: u8 = 2;
+
+pub fn visc_code(v: &Viscosity) -> u8 {
+    match v {
+        Viscosity::Artificial { .. } => VISC_ARTIFICIAL,
+        Viscosity::Laminar { .. } => VISC_LAMINAR,
+        Viscosity::LaminarSps { .. } => VISC_LAMINAR_SPS,
+    }
+}
+
+pub fn diff_code(d: &Diffusion) -> u8 {
+    match d {
+        Diffusion::None => DIFF_NONE,
+        Diffusion::Molteni { .. } => DIFF_MOLTENI,
+        Diffusion::Fourtakas { .. } => DIFF_FOURTAKAS,
+    }
+}
+
+/// Constants of a run, derived once from the scene.
+#[derive(Clone, Copy, Debug)]
+pub struct Constants {
+    pub dim: usize,
+    pub dp: Real,
+    pub h: Real,
+    pub support: Real,
+    /// Particle mass `rho0 dp^dim` [kg] (all particles, fluid and wall, have the same mass).
+    pub mass: Real,
+    pub rho0: Real,
+    pub gamma: Real,
+    /// Tait stiffness `B = c0^2 rho0 / gamma` [Pa].
+    pub b_tait: Real,
+    /// Reference sound speed `c0 = coefsound sqrt(g h_swl)` [m/s].
+    pub c0: Real,
+    pub gravity: Real,
+    /// `eta^2 = 0.01 h^2`, keeps `1/r^2` terms finite.
+    pub eta2: Real,
+    /// Artificial viscosity coefficient (0 when another model is used).
+    pub alpha: Real,
+    /// Laminar kinematic viscosity [m^2/s].
+    pub nu: Real,
+    /// SPS: `(Cs dp)^2` and `2/3 C_I dp^2` (Dalrymple & Rogers 2006).
+    pub sps_smag: Real,
+    pub sps_blin: Real,
+    /// Density diffusion: `delta h c0`.
+    pub delta_h_c0: Real,
+    /// Fourtakas et al. (2019): `rho0 g / B`.
+    pub fourtakas_gz: Real,
+    pub cfl: Real,
+    pub density_band: Real,
+}
+
+impl Constants {
+    pub fn new(scene: &Scene) -> Self {
+        let dim = scene.dim;
+        let h = scene.h();
+        let c0 = scene.coefsound * (scene.gravity * scene.h_swl()).sqrt();
+        // A tank without gravity has no hydrostatic scale: fall back to coefsound * sqrt(g0 h_swl)
+        // with standard gravity so that c0 stays positive.
+        let c0 = if c0 > 0.0 { c0 } else { scene.coefsound * (9.81 * scene.h_swl()).sqrt() };
+        let b_tait = c0 * c0 * scene.rho0 / scene.gamma;
+        let (alpha, nu, cs, ci) = match scene.viscosity {
+            Viscosity::Artificial { alpha } => (alpha, 0.0, 0.0, 0.0),
+            Viscosity::Laminar { nu } => (0.0, nu, 0.0, 0.0),
+            Viscosity::LaminarSps { nu, cs, ci } => (0.0, nu, cs, ci),
+        };
+        let delta = match scene.diffusion {
+            Diffusion::None => 0.0,
+            Diffusion::Molteni { delta } | Diffusion::Fourtakas { delta } => delta,
+        };
+        Self {
+            dim,
+            dp: scene.dp,
+            h,
+            support: 2.0 * h,
+            mass: scene.rho0 * scene.dp.powi(dim as i32),
+            rho0: scene.rho0,
+            gamma: scene.gamma,
+            b_tait,
+            c0,
+            gravity: scene.gravity,
+            eta2: 0.01 * h * h,
+            alpha,
+            nu,
+            sps_smag: (cs * scene.dp).powi(2),
+            sps_blin: 2.0 / 3.0 * ci * scene.dp * scene.dp,
+            delta_h_c0: delta * h * c0,
+            fourtakas_gz: scene.rho0 * scene.gravity / b_tait,
+            cfl: scene.cfl,
+            density_band: scene.density_band,
+        }
+    }
+}

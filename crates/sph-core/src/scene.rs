@@ -1,0 +1,378 @@
+//! The scene: geometry, physics options and numerical parameters, as plain serde data.
+//!
+//! Python builds a scene, the core checks every field ([`Scene::validate`]) before anything is
+//! allocated, and [`crate::build`] turns it into a monomorphised solver. Unknown keys are refused.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::kernel::KernelKind;
+use crate::math::Real;
+
+/// Viscosity model (DESIGN.md section 2). One per scene.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Viscosity {
+    /// Monaghan (1992) artificial viscosity with coefficient `alpha`.
+    Artificial { alpha: Real },
+    /// Lo & Shao (2002) laminar viscosity, kinematic viscosity `nu` [m^2/s].
+    Laminar { nu: Real },
+    /// Laminar viscosity plus the SPS Smagorinsky closure (Dalrymple & Rogers 2006).
+    LaminarSps {
+        nu: Real,
+        #[serde(default = "default_cs")]
+        cs: Real,
+        #[serde(default = "default_ci")]
+        ci: Real,
+    },
+}
+
+fn default_cs() -> Real {
+    0.12
+}
+fn default_ci() -> Real {
+    0.0066
+}
+
+/// Density diffusion term in the continuity equation.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Diffusion {
+    None,
+    /// Molteni & Colagrossi (2009).
+    Molteni { delta: Real },
+    /// Fourtakas et al. (2019): the hydrostatic part of the density difference is removed.
+    Fourtakas { delta: Real },
+}
+
+/// Time integrator (DESIGN.md section 2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "scheme", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Integrator {
+    Symplectic,
+    Verlet {
+        #[serde(default = "default_euler_every")]
+        euler_every: u32,
+    },
+}
+
+fn default_euler_every() -> u32 {
+    40
+}
+
+/// An axis-aligned box `[min, max]`; vectors have `dim` entries, the last vertical.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    pub min: Vec<Real>,
+    pub max: Vec<Real>,
+}
+
+/// A solid obstacle inside the tank, sampled into wall particles.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Obstacle {
+    Box { min: Vec<Real>, max: Vec<Real> },
+    /// Solid on the side opposite `normal` (a beach: normal pointing up and offshore), clipped to
+    /// the tank.
+    Plane { point: Vec<Real>, normal: Vec<Real> },
+}
+
+/// A complete scene.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub dim: usize,
+    /// Initial particle spacing [m].
+    pub dp: Real,
+    /// Magnitude of gravity [m/s^2], acting along -z.
+    #[serde(default = "default_gravity")]
+    pub gravity: Real,
+    /// Reference density [kg/m^3].
+    #[serde(default = "default_rho0")]
+    pub rho0: Real,
+    #[serde(default = "default_kernel")]
+    pub kernel: KernelKind,
+    /// `h = coefh * sqrt(dim) * dp`.
+    #[serde(default = "default_coefh")]
+    pub coefh: Real,
+    /// `c0 = coefsound * sqrt(g * h_swl)`.
+    #[serde(default = "default_coefsound")]
+    pub coefsound: Real,
+    /// Tait exponent.
+    #[serde(default = "default_gamma")]
+    pub gamma: Real,
+    /// Depth used for the sound speed [m]; default: highest fluid top above the tank floor.
+    #[serde(default)]
+    pub h_swl: Option<Real>,
+    /// Courant number of the variable time step.
+    #[serde(default = "default_cfl")]
+    pub cfl: Real,
+    #[serde(default = "default_viscosity")]
+    pub viscosity: Viscosity,
+    #[serde(default = "default_diffusion")]
+    pub diffusion: Diffusion,
+    #[serde(default = "default_integrator")]
+    pub integrator: Integrator,
+    /// Inner faces of the tank (floor and side walls; the top is open).
+    pub tank: BoxSpec,
+    #[serde(default)]
+    pub obstacles: Vec<Obstacle>,
+    /// Fluid boxes, initialised hydrostatically from each box's top.
+    pub fluid: Vec<BoxSpec>,
+    /// Wall thickness in particle layers; default `ceil(2h/dp)` covers the kernel support.
+    #[serde(default)]
+    pub boundary_layers: Option<usize>,
+    /// Density band of the stability monitor: a density outside `rho0 (1 -+ x)` stops the run.
+    #[serde(default = "default_density_band")]
+    pub density_band: Real,
+}
+
+fn default_gravity() -> Real {
+    9.81
+}
+fn default_rho0() -> Real {
+    1000.0
+}
+fn default_kernel() -> KernelKind {
+    KernelKind::Wendland
+}
+fn default_coefh() -> Real {
+    1.0
+}
+fn default_coefsound() -> Real {
+    20.0
+}
+fn default_gamma() -> Real {
+    7.0
+}
+fn default_cfl() -> Real {
+    0.2
+}
+fn default_viscosity() -> Viscosity {
+    Viscosity::Artificial { alpha: 0.01 }
+}
+fn default_diffusion() -> Diffusion {
+    Diffusion::Fourtakas { delta: 0.1 }
+}
+fn default_integrator() -> Integrator {
+    Integrator::Symplectic
+}
+fn default_density_band() -> Real {
+    0.5
+}
+
+fn check_positive(field: &str, v: Real) -> Result<()> {
+    if !v.is_finite() {
+        return Err(Error::invalid(field, format!("must be a finite number, got {v}")));
+    }
+    if v <= 0.0 {
+        return Err(Error::invalid(field, format!("must be > 0, got {v}")));
+    }
+    Ok(())
+}
+
+fn check_non_negative(field: &str, v: Real) -> Result<()> {
+    if !v.is_finite() || v < 0.0 {
+        return Err(Error::invalid(field, format!("must be a finite number >= 0, got {v}")));
+    }
+    Ok(())
+}
+
+fn check_vector(field: &str, v: &[Real], dim: usize) -> Result<()> {
+    if v.len() != dim {
+        return Err(Error::invalid(field, format!("must have {dim} components (dim = {dim}), got {}", v.len())));
+    }
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(Error::invalid(field, format!("components must be finite, got {x}")));
+    }
+    Ok(())
+}
+
+fn check_box(field: &str, b: &BoxSpec, dim: usize) -> Result<()> {
+    check_vector(&format!("{field}.min"), &b.min, dim)?;
+    check_vector(&format!("{field}.max"), &b.max, dim)?;
+    for i in 0..dim {
+        if b.max[i] <= b.min[i] {
+            return Err(Error::invalid(
+                field,
+                format!("max[{i}] = {} must be greater than min[{i}] = {}", b.max[i], b.min[i]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Parses a scene from JSON; errors name the offending field's path.
+    pub fn from_json(text: &str) -> Result<Self> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let scene: Scene = serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            let field = if path.is_empty() || path == "." { "scene".to_string() } else { path };
+            Error::invalid(field, e.into_inner().to_string())
+        })?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Smoothing length `h = coefh * sqrt(dim) * dp`.
+    pub fn h(&self) -> Real {
+        self.coefh * (self.dim as Real).sqrt() * self.dp
+    }
+
+    /// Wall thickness in layers: enough to cover the kernel support `2h`.
+    pub fn layers(&self) -> usize {
+        self.boundary_layers.unwrap_or_else(|| (2.0 * self.h() / self.dp - 1e-9).ceil() as usize)
+    }
+
+    /// Still-water depth used for the sound speed.
+    pub fn h_swl(&self) -> Real {
+        self.h_swl.unwrap_or_else(|| {
+            let floor = self.tank.min[self.dim - 1];
+            self.fluid.iter().map(|b| b.max[self.dim - 1] - floor).fold(0.0, Real::max)
+        })
+    }
+
+    /// Checks every field; the error names the field and the reason.
+    pub fn validate(&self) -> Result<()> {
+        if self.dim != 2 && self.dim != 3 {
+            return Err(Error::invalid("dim", format!("must be 2 or 3, got {}", self.dim)));
+        }
+        let dim = self.dim;
+        check_positive("dp", self.dp)?;
+        check_non_negative("gravity", self.gravity)?;
+        check_positive("rho0", self.rho0)?;
+        check_positive("coefh", self.coefh)?;
+        check_positive("coefsound", self.coefsound)?;
+        check_positive("gamma", self.gamma)?;
+        check_positive("cfl", self.cfl)?;
+        if self.cfl > 1.0 {
+            return Err(Error::invalid("cfl", format!("must be <= 1, got {}", self.cfl)));
+        }
+        check_positive("density_band", self.density_band)?;
+        if let Some(d) = self.h_swl {
+            check_positive("h_swl", d)?;
+        }
+        match self.viscosity {
+            Viscosity::Artificial { alpha } => check_non_negative("viscosity.alpha", alpha)?,
+            Viscosity::Laminar { nu } => check_non_negative("viscosity.nu", nu)?,
+            Viscosity::LaminarSps { nu, cs, ci } => {
+                check_non_negative("viscosity.nu", nu)?;
+                check_non_negative("viscosity.cs", cs)?;
+                check_non_negative("viscosity.ci", ci)?;
+            }
+        }
+        match self.diffusion {
+            Diffusion::None => {}
+            Diffusion::Molteni { delta } | Diffusion::Fourtakas { delta } => {
+                check_non_negative("diffusion.delta", delta)?
+            }
+        }
+        if let Integrator::Verlet { euler_every } = self.integrator {
+            if euler_every == 0 {
+                return Err(Error::invalid("integrator.euler_every", "must be >= 1"));
+            }
+        }
+        if let Some(0) = self.boundary_layers {
+            return Err(Error::invalid("boundary_layers", "must be >= 1"));
+        }
+        check_box("tank", &self.tank, dim)?;
+        for (i, o) in self.obstacles.iter().enumerate() {
+            let f = format!("obstacles[{i}]");
+            match o {
+                Obstacle::Box { min, max } => {
+                    check_box(&f, &BoxSpec { min: min.clone(), max: max.clone() }, dim)?
+                }
+                Obstacle::Plane { point, normal } => {
+                    check_vector(&format!("{f}.point"), point, dim)?;
+                    check_vector(&format!("{f}.normal"), normal, dim)?;
+                    let n2: Real = normal.iter().map(|x| x * x).sum();
+                    if n2 < 1e-24 {
+                        return Err(Error::invalid(format!("{f}.normal"), "must not be the zero vector"));
+                    }
+                }
+            }
+        }
+        if self.fluid.is_empty() {
+            return Err(Error::invalid("fluid", "at least one fluid box is needed"));
+        }
+        let tol = 1e-9 * self.dp;
+        for (i, b) in self.fluid.iter().enumerate() {
+            let f = format!("fluid[{i}]");
+            check_box(&f, b, dim)?;
+            for k in 0..dim {
+                let upper_ok = k == dim - 1 || b.max[k] <= self.tank.max[k] + tol;
+                if b.min[k] < self.tank.min[k] - tol || !upper_ok || b.max[k] > self.tank.max[k] + tol {
+                    return Err(Error::invalid(
+                        f,
+                        format!(
+                            "fluid box [{:?}, {:?}] does not fit in the tank [{:?}, {:?}] (axis {k})",
+                            b.min, b.max, self.tank.min, self.tank.max
+                        ),
+                    ));
+                }
+            }
+            for k in 0..dim {
+                if b.max[k] - b.min[k] < self.dp {
+                    return Err(Error::invalid(
+                        f,
+                        format!("extent {} along axis {k} is smaller than dp = {}", b.max[k] - b.min[k], self.dp),
+                    ));
+                }
+            }
+        }
+        for k in 0..dim {
+            let extent = self.tank.max[k] - self.tank.min[k];
+            if extent < 2.0 * self.dp {
+                return Err(Error::invalid(
+                    "tank",
+                    format!("extent {extent} along axis {k} is smaller than 2 dp = {}", 2.0 * self.dp),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dambreak_json(extra: &str) -> String {
+        format!(
+            r#"{{"dim": 2, "dp": 0.05, "tank": {{"min": [0, 0], "max": [4, 3]}},
+                "fluid": [{{"min": [0, 0], "max": [1, 2]}}] {extra}}}"#
+        )
+    }
+
+    #[test]
+    fn defaults_parse() {
+        let s = Scene::from_json(&dambreak_json("")).expect("valid scene");
+        assert_eq!(s.kernel, KernelKind::Wendland);
+        assert_eq!(s.h_swl(), 2.0);
+        assert_eq!(s.layers(), 3);
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let cases = [
+            (dambreak_json(r#", "cfl": -1"#), "cfl"),
+            (dambreak_json(r#", "kernel": "gauss""#), "kernel"),
+            (dambreak_json(r#", "viscosity": {"model": "artificial", "alpha": -0.1}"#), "viscosity.alpha"),
+            (dambreak_json(r#", "viscosity": {"model": "magic"}"#), "viscosity"),
+            (dambreak_json(r#", "bogus": 1"#), "bogus"),
+            (dambreak_json(r#", "obstacles": [{"shape": "plane", "point": [0, 0], "normal": [0, 0]}]"#), "obstacles[0].normal"),
+            (r#"{"dim": 2, "dp": 0.0, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [1, 2]}]}"#.to_string(), "dp"),
+            (r#"{"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [5, 2]}]}"#.to_string(), "fluid[0]"),
+        ];
+        for (json, field) in cases {
+            match Scene::from_json(&json) {
+                Err(Error::InvalidScene { field: f, reason }) => {
+                    assert!(f.starts_with(field), "expected field {field}, got {f}: {reason}")
+                }
+                other => panic!("expected an error for {field}, got {other:?}"),
+            }
+        }
+    }
+}

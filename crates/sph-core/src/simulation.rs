@@ -1,0 +1,595 @@
+//! The solver: a scene's particles advanced in time, one monomorphised step per combination of
+//! dimension, kernel, viscosity model and density diffusion.
+//!
+//! One step reads top to bottom in [`Solver::step_once`]: sort by cell, equation of state,
+//! (SPS stress), forces, time step, integration, monitors.
+
+use rayon::prelude::*;
+
+use crate::error::{Error, InstabilityKind, Result};
+use crate::geometry;
+use crate::kernel::Kernel;
+use crate::math::{Dim, Real, Vector};
+use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::particles::{permute, Particles, KIND_FIXED, KIND_FLUID};
+use crate::physics::eos::{density_at_pressure, pressure};
+use crate::physics::forces::{boundary_density_rate, fluid_forces, sps_stress, Fields, StepLimits};
+use crate::physics::{Constants, VISC_LAMINAR_SPS};
+use crate::scene::{Integrator, Scene};
+
+/// Cells of half the kernel support: fewer candidate pairs than `2h` cells (see `neighbours.rs`).
+const NEIGHBOUR_REACH: usize = 2;
+
+/// Derived parameters of a run, for reports.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Params {
+    pub dim: usize,
+    pub dp: Real,
+    pub h: Real,
+    pub support: Real,
+    pub cell_size: Real,
+    pub n_cells: usize,
+    pub mass: Real,
+    pub rho0: Real,
+    pub c0: Real,
+    pub b_tait: Real,
+    pub gamma: Real,
+    pub boundary_layers: usize,
+    pub kernel: &'static str,
+    pub viscosity: &'static str,
+    pub diffusion: &'static str,
+    pub integrator: &'static str,
+    /// Smallest time step allowed before the run is declared unstable [s].
+    pub dt_floor: Real,
+}
+
+/// Shepard-normalised SPH interpolation at a set of points (DESIGN.md section 4).
+#[derive(Clone, Debug, Default)]
+pub struct Interpolated {
+    /// `sum_b V_b W` (about 1 inside the fluid, 0 far outside).
+    pub kernel_sum: Vec<Real>,
+    pub density: Vec<Real>,
+    pub pressure: Vec<Real>,
+    /// Flattened `(M, dim)`.
+    pub velocity: Vec<Real>,
+}
+
+/// The object-safe face of a solver, whatever its compile-time options.
+pub trait Simulation: Send + Sync {
+    fn dim(&self) -> usize;
+    fn time(&self) -> Real;
+    fn steps(&self) -> u64;
+    /// Last time step taken [s] (0 before the first step).
+    fn dt(&self) -> Real;
+    fn n_particles(&self) -> usize;
+    fn n_fluid(&self) -> usize;
+    /// Advances `n` steps.
+    fn step(&mut self, n: u64) -> Result<()>;
+    /// Advances until `time >= until` (the last step is not shortened).
+    fn run_until(&mut self, until: Real) -> Result<()>;
+    /// Flattened `(N, dim)` positions in storage order.
+    fn positions(&self) -> &[Real];
+    fn velocities(&self) -> &[Real];
+    fn densities(&self) -> &[Real];
+    fn pressures(&self) -> &[Real];
+    fn kinds(&self) -> &[u8];
+    fn ids(&self) -> &[u32];
+    /// Bytes of the solver's own arrays (particles, integrator history, grid, optional fields).
+    fn memory_bytes(&self) -> usize;
+    fn params(&self) -> Params;
+    /// Interpolates fluid fields at flattened `(M, dim)` points.
+    fn interpolate(&self, points: &[Real]) -> Result<Interpolated>;
+}
+
+/// Integrator history.
+#[derive(Debug, Clone)]
+enum History<D: Dim> {
+    /// State at the start of the step (positions, velocities, densities).
+    Symplectic { pos0: Vec<D::V>, vel0: Vec<D::V>, rho0: Vec<Real> },
+    /// Velocities and densities one step back, and the step counter for the Euler restart.
+    Verlet { vel_prev: Vec<D::V>, rho_prev: Vec<Real>, euler_every: u32 },
+}
+
+#[derive(Debug, Clone, Default)]
+struct Scratch<D: Dim> {
+    perm: Vec<u32>,
+    vectors: Vec<D::V>,
+    reals: Vec<Real>,
+    ids: Vec<u32>,
+}
+
+pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
+    scene: Scene,
+    c: Constants,
+    kernel: K,
+    p: Particles<D>,
+    grid: CellGrid<D>,
+    history: History<D>,
+    /// SPS stress per fluid particle; empty without the SPS closure.
+    tau: Vec<D::Sym>,
+    scratch: Scratch<D>,
+    time: Real,
+    steps: u64,
+    dt: Real,
+    dt_floor: Real,
+}
+
+impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+    pub fn new(scene: Scene) -> Result<Self> {
+        scene.validate()?;
+        let c = Constants::new(&scene);
+        let kernel = K::new(c.h, D::DIM);
+        let sampled = geometry::sample::<D>(&scene)?;
+        let n_fixed = sampled.walls.len();
+        let n = n_fixed + sampled.fluid.len();
+        let up = D::DIM - 1;
+
+        let hydrostatic = |surface: Real, z: Real| -> Real {
+            density_at_pressure(&c, c.rho0 * c.gravity * (surface - z).max(0.0))
+        };
+        let mut pos = Vec::with_capacity(n);
+        let mut rho = Vec::with_capacity(n);
+        for (p, s) in sampled.walls.iter().zip(&sampled.wall_surface) {
+            pos.push(*p);
+            rho.push(s.map_or(c.rho0, |s| hydrostatic(s, p.get(up))));
+        }
+        for (p, &s) in sampled.fluid.iter().zip(&sampled.fluid_surface) {
+            pos.push(*p);
+            rho.push(hydrostatic(s, p.get(up)));
+        }
+        let mut kind = vec![KIND_FIXED; n_fixed];
+        kind.resize(n, KIND_FLUID);
+        let n_fluid = n - n_fixed;
+        let p = Particles::<D> {
+            pos,
+            vel: vec![D::V::ZERO; n],
+            press: vec![0.0; n],
+            rho,
+            id: (0..n as u32).collect(),
+            kind,
+            acc: vec![D::V::ZERO; n_fluid],
+            drho: vec![0.0; n],
+            n_fixed,
+            n_moving: 0,
+        };
+
+        // Grid: the tank plus its walls, and as much again above the tank for splashes.
+        let layers = scene.layers() as Real * scene.dp;
+        let mut lo = D::V::from_slice(&scene.tank.min) - D::V::splat(layers);
+        let mut hi = D::V::from_slice(&scene.tank.max) + D::V::splat(layers);
+        let height = scene.tank.max[up] - scene.tank.min[up];
+        hi.set(up, hi.get(up) + height);
+        lo = lo.min(hi);
+        let grid = CellGrid::<D>::new(lo, hi, c.support, NEIGHBOUR_REACH, n);
+
+        let history = match scene.integrator {
+            Integrator::Symplectic => History::Symplectic {
+                pos0: vec![D::V::ZERO; n],
+                vel0: vec![D::V::ZERO; n],
+                rho0: vec![0.0; n],
+            },
+            Integrator::Verlet { euler_every } => {
+                History::Verlet { vel_prev: p.vel.clone(), rho_prev: p.rho.clone(), euler_every }
+            }
+        };
+        let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
+        // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
+        let dt_floor = 1e-6 * c.h / c.c0;
+        let scratch = Scratch {
+            perm: vec![0; n],
+            vectors: Vec::with_capacity(n),
+            reals: Vec::with_capacity(n),
+            ids: Vec::with_capacity(n),
+        };
+        let mut solver = Self {
+            scene,
+            c,
+            kernel,
+            p,
+            grid,
+            history,
+            tau,
+            scratch,
+            time: 0.0,
+            steps: 0,
+            dt: 0.0,
+            dt_floor,
+        };
+        // Fixed walls never move: sort them once.
+        solver.sort_group(GROUP_FIXED);
+        solver.sort_group(GROUP_FLUID);
+        solver.refresh_pressure();
+        Ok(solver)
+    }
+
+    fn group_range(&self, g: usize) -> std::ops::Range<usize> {
+        let (nf, fs) = (self.p.n_fixed, self.p.fluid_start());
+        match g {
+            GROUP_FIXED => 0..nf,
+            GROUP_MOVING => nf..fs,
+            _ => fs..self.p.len(),
+        }
+    }
+
+    /// Sorts one group by cell and carries every per-particle array along.
+    fn sort_group(&mut self, g: usize) {
+        let range = self.group_range(g);
+        if range.is_empty() {
+            return;
+        }
+        let s = &mut self.scratch;
+        let perm = &mut s.perm[..range.len()];
+        self.grid.sort_group(g, range.clone(), &self.p.pos, perm);
+        let perm = &s.perm[..range.len()];
+        permute(&mut self.p.pos, range.clone(), perm, &mut s.vectors);
+        permute(&mut self.p.vel, range.clone(), perm, &mut s.vectors);
+        permute(&mut self.p.rho, range.clone(), perm, &mut s.reals);
+        permute(&mut self.p.id, range.clone(), perm, &mut s.ids);
+        match &mut self.history {
+            History::Symplectic { pos0, vel0, rho0 } => {
+                permute(pos0, range.clone(), perm, &mut s.vectors);
+                permute(vel0, range.clone(), perm, &mut s.vectors);
+                permute(rho0, range.clone(), perm, &mut s.reals);
+            }
+            History::Verlet { vel_prev, rho_prev, .. } => {
+                permute(vel_prev, range.clone(), perm, &mut s.vectors);
+                permute(rho_prev, range.clone(), perm, &mut s.reals);
+            }
+        }
+    }
+
+    /// The particle arrays (storage order).
+    pub fn particles(&self) -> &Particles<D> {
+        &self.p
+    }
+
+    /// Mutable particle arrays, for tests and injected perturbations. Do not resize them.
+    pub fn particles_mut(&mut self) -> &mut Particles<D> {
+        &mut self.p
+    }
+
+    pub fn constants(&self) -> &Constants {
+        &self.c
+    }
+
+    /// Sorts the moving groups, refreshes pressures and computes accelerations and density rates.
+    pub fn compute_forces(&mut self) -> StepLimits {
+        self.sort_group(GROUP_MOVING);
+        self.sort_group(GROUP_FLUID);
+        self.refresh_pressure();
+        let c = self.c;
+        let fs = self.p.fluid_start();
+        if VISC == VISC_LAMINAR_SPS {
+            let fields = Fields::<D> {
+                pos: &self.p.pos,
+                vel: &self.p.vel,
+                rho: &self.p.rho,
+                press: &self.p.press,
+                tau: &[],
+                fluid_start: fs,
+            };
+            sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
+        }
+        let fields = Fields::<D> {
+            pos: &self.p.pos,
+            vel: &self.p.vel,
+            rho: &self.p.rho,
+            press: &self.p.press,
+            tau: &self.tau,
+            fluid_start: fs,
+        };
+        let (drho_walls, drho_fluid) = self.p.drho.split_at_mut(fs);
+        boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls);
+        fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut self.p.acc, drho_fluid)
+    }
+
+    /// Pressure from the equation of state for the current densities and storage order.
+    fn refresh_pressure(&mut self) {
+        let c = self.c;
+        self.p.press.par_iter_mut().zip(self.p.rho.par_iter()).for_each(|(pr, &r)| *pr = pressure(&c, r));
+    }
+
+    /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).
+    fn time_step(&self, lim: StepLimits) -> Result<Real> {
+        let dt_f = if lim.max_acc > 0.0 { (self.c.h / lim.max_acc).sqrt() } else { Real::INFINITY };
+        let dt = self.c.cfl * dt_f.min(lim.min_dt_cv);
+        if !dt.is_finite() || dt < self.dt_floor {
+            return Err(self.instability(
+                InstabilityKind::TimeStepCollapse,
+                None,
+                format!("time step {dt:e} s below the floor {:e} s", self.dt_floor),
+            ));
+        }
+        Ok(dt)
+    }
+
+    fn instability(&self, kind: InstabilityKind, slot: Option<usize>, message: String) -> Error {
+        let slot = slot.unwrap_or(self.p.fluid_start().min(self.p.len().saturating_sub(1)));
+        Error::Instability {
+            kind,
+            step: self.steps,
+            time: self.time,
+            particle: self.p.id[slot],
+            position: self.p.pos[slot].as_slice().to_vec(),
+            message,
+        }
+    }
+
+    /// NaN/inf and density-band monitor over all particles; reports the lowest particle id.
+    fn check(&self) -> Result<()> {
+        let (lo, hi) = (self.c.rho0 * (1.0 - self.c.density_band), self.c.rho0 * (1.0 + self.c.density_band));
+        let p = &self.p;
+        let bad = (0..p.len())
+            .into_par_iter()
+            .filter_map(|i| {
+                let finite = p.pos[i].is_finite() && p.vel[i].is_finite() && p.rho[i].is_finite();
+                if !finite {
+                    Some((p.id[i], i, InstabilityKind::NonFinite))
+                } else if p.rho[i] < lo || p.rho[i] > hi {
+                    Some((p.id[i], i, InstabilityKind::DensityOutOfRange))
+                } else {
+                    None
+                }
+            })
+            .min_by_key(|&(id, _, _)| id);
+        match bad {
+            None => Ok(()),
+            Some((_, i, kind)) => {
+                let message = match kind {
+                    InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
+                    _ => format!(
+                        "density {:.3} kg/m^3 outside [{lo:.1}, {hi:.1}] (rho0 -+ {:.0} %)",
+                        p.rho[i],
+                        self.c.density_band * 100.0
+                    ),
+                };
+                Err(self.instability(kind, Some(i), message))
+            }
+        }
+    }
+
+    /// One time step.
+    fn step_once(&mut self) -> Result<()> {
+        let fs = self.p.fluid_start();
+        let rho0 = self.c.rho0;
+        match self.history {
+            History::Symplectic { .. } => {
+                // Predictor (Leimkuhler & Patrick; DualSPHysics form).
+                let lim = self.compute_forces();
+                let dt = self.time_step(lim)?;
+                let half = 0.5 * dt;
+                let History::Symplectic { pos0, vel0, rho0: rho_n } = &mut self.history else { unreachable!() };
+                pos0.copy_from_slice(&self.p.pos);
+                vel0.copy_from_slice(&self.p.vel);
+                rho_n.copy_from_slice(&self.p.rho);
+                let p = &mut self.p;
+                p.rho.par_iter_mut().zip(p.drho.par_iter()).enumerate().for_each(|(i, (r, &d))| {
+                    *r += half * d;
+                    if i < fs {
+                        *r = r.max(rho0); // DBC: walls never suck fluid in (DualSPHysics)
+                    }
+                });
+                let (_, pos_f) = p.pos.split_at_mut(fs);
+                let (_, vel_f) = p.vel.split_at_mut(fs);
+                pos_f.par_iter_mut().zip(vel_f.par_iter_mut()).zip(p.acc.par_iter()).for_each(|((x, v), &a)| {
+                    *x += *v * half;
+                    *v += a * half;
+                });
+
+                // Corrector.
+                let _ = self.compute_forces();
+                let History::Symplectic { pos0, vel0, rho0: rho_n } = &self.history else { unreachable!() };
+                let p = &mut self.p;
+                p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_n.par_iter()).enumerate().for_each(
+                    |(i, ((r, &d), &rn))| {
+                        let eps = -d / *r * dt;
+                        *r = rn * (2.0 - eps) / (2.0 + eps);
+                        if i < fs {
+                            *r = r.max(rho0);
+                        }
+                    },
+                );
+                let (_, pos_f) = p.pos.split_at_mut(fs);
+                let (_, vel_f) = p.vel.split_at_mut(fs);
+                pos_f
+                    .par_iter_mut()
+                    .zip(vel_f.par_iter_mut())
+                    .zip(p.acc.par_iter())
+                    .zip(pos0[fs..].par_iter().zip(vel0[fs..].par_iter()))
+                    .for_each(|(((x, v), &a), (&x0, &v0))| {
+                        let v1 = v0 + a * dt;
+                        *x = x0 + (v1 + v0) * (0.5 * dt);
+                        *v = v1;
+                    });
+                self.dt = dt;
+            }
+            History::Verlet { euler_every, .. } => {
+                let lim = self.compute_forces();
+                let dt = self.time_step(lim)?;
+                // Euler on the first step (no history yet) and every `euler_every` steps.
+                let euler = self.steps.is_multiple_of(euler_every as u64);
+                let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history else { unreachable!() };
+                let p = &mut self.p;
+                p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_prev.par_iter_mut()).enumerate().for_each(
+                    |(i, ((r, &d), rp))| {
+                        let mut next = if euler { *r + dt * d } else { *rp + 2.0 * dt * d };
+                        if i < fs {
+                            next = next.max(rho0);
+                        }
+                        *rp = *r;
+                        *r = next;
+                    },
+                );
+                let (_, pos_f) = p.pos.split_at_mut(fs);
+                let (_, vel_f) = p.vel.split_at_mut(fs);
+                pos_f
+                    .par_iter_mut()
+                    .zip(vel_f.par_iter_mut())
+                    .zip(p.acc.par_iter())
+                    .zip(vel_prev[fs..].par_iter_mut())
+                    .for_each(|(((x, v), &a), vp)| {
+                        *x += *v * dt + a * (0.5 * dt * dt);
+                        let next = if euler { *v + a * dt } else { *vp + a * (2.0 * dt) };
+                        *vp = *v;
+                        *v = next;
+                    });
+                self.dt = dt;
+            }
+        }
+        self.time += self.dt;
+        self.steps += 1;
+        // Pressures readable between steps match the densities.
+        self.refresh_pressure();
+        self.check()
+    }
+}
+
+fn flat<V: Vector>(v: &[V]) -> &[Real] {
+    bytemuck::cast_slice(v)
+}
+
+impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D, K, VISC, DIFF> {
+    fn dim(&self) -> usize {
+        D::DIM
+    }
+    fn time(&self) -> Real {
+        self.time
+    }
+    fn steps(&self) -> u64 {
+        self.steps
+    }
+    fn dt(&self) -> Real {
+        self.dt
+    }
+    fn n_particles(&self) -> usize {
+        self.p.len()
+    }
+    fn n_fluid(&self) -> usize {
+        self.p.n_fluid()
+    }
+    fn step(&mut self, n: u64) -> Result<()> {
+        for _ in 0..n {
+            self.step_once()?;
+        }
+        Ok(())
+    }
+    fn run_until(&mut self, until: Real) -> Result<()> {
+        if !until.is_finite() {
+            return Err(Error::invalid("until", format!("must be finite, got {until}")));
+        }
+        while self.time < until {
+            self.step_once()?;
+        }
+        Ok(())
+    }
+    fn positions(&self) -> &[Real] {
+        flat(&self.p.pos)
+    }
+    fn velocities(&self) -> &[Real] {
+        flat(&self.p.vel)
+    }
+    fn densities(&self) -> &[Real] {
+        &self.p.rho
+    }
+    fn pressures(&self) -> &[Real] {
+        &self.p.press
+    }
+    fn kinds(&self) -> &[u8] {
+        &self.p.kind
+    }
+    fn ids(&self) -> &[u32] {
+        &self.p.id
+    }
+    fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let v = size_of::<D::V>();
+        let r = size_of::<Real>();
+        let history = match &self.history {
+            History::Symplectic { pos0, vel0, rho0 } => (pos0.capacity() + vel0.capacity()) * v + rho0.capacity() * r,
+            History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
+        };
+        let s = &self.scratch;
+        let scratch = s.perm.capacity() * 4 + s.vectors.capacity() * v + s.reals.capacity() * r + s.ids.capacity() * 4;
+        self.p.memory_bytes()
+            + history
+            + self.tau.capacity() * size_of::<D::Sym>()
+            + self.grid.memory_bytes()
+            + scratch
+    }
+    fn params(&self) -> Params {
+        use crate::scene::{Diffusion, Viscosity};
+        let s = &self.scene;
+        Params {
+            dim: D::DIM,
+            dp: self.c.dp,
+            h: self.c.h,
+            support: self.c.support,
+            cell_size: self.c.support / NEIGHBOUR_REACH as Real,
+            n_cells: self.grid.n_cells(),
+            mass: self.c.mass,
+            rho0: self.c.rho0,
+            c0: self.c.c0,
+            b_tait: self.c.b_tait,
+            gamma: self.c.gamma,
+            boundary_layers: s.layers(),
+            kernel: K::KIND.name(),
+            viscosity: match s.viscosity {
+                Viscosity::Artificial { .. } => "artificial",
+                Viscosity::Laminar { .. } => "laminar",
+                Viscosity::LaminarSps { .. } => "laminar_sps",
+            },
+            diffusion: match s.diffusion {
+                Diffusion::None => "none",
+                Diffusion::Molteni { .. } => "molteni",
+                Diffusion::Fourtakas { .. } => "fourtakas",
+            },
+            integrator: match s.integrator {
+                Integrator::Symplectic => "symplectic",
+                Integrator::Verlet { .. } => "verlet",
+            },
+            dt_floor: self.dt_floor,
+        }
+    }
+    fn interpolate(&self, points: &[Real]) -> Result<Interpolated> {
+        if !points.len().is_multiple_of(D::DIM) {
+            return Err(Error::invalid("points", format!("length {} is not a multiple of dim = {}", points.len(), D::DIM)));
+        }
+        if let Some(x) = points.iter().find(|x| !x.is_finite()) {
+            return Err(Error::invalid("points", format!("coordinates must be finite, got {x}")));
+        }
+        let m = points.len() / D::DIM;
+        let support2 = self.c.support * self.c.support;
+        let p = &self.p;
+        let rows: Vec<(Real, Real, Real, D::V)> = (0..m)
+            .into_par_iter()
+            .map(|i| {
+                let x = D::V::from_slice(&points[i * D::DIM..(i + 1) * D::DIM]);
+                let (mut w_sum, mut rho, mut pr, mut vel) = (0.0, 0.0, 0.0, D::V::ZERO);
+                self.grid.for_each_near(GROUP_FLUID, x, |b| {
+                    let r2 = (x - p.pos[b]).length_squared();
+                    if r2 >= support2 {
+                        return;
+                    }
+                    let vw = self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
+                    w_sum += vw;
+                    rho += vw * p.rho[b];
+                    pr += vw * p.press[b];
+                    vel += p.vel[b] * vw;
+                });
+                if w_sum > 0.0 {
+                    (w_sum, rho / w_sum, pr / w_sum, vel * (1.0 / w_sum))
+                } else {
+                    (0.0, 0.0, 0.0, D::V::ZERO)
+                }
+            })
+            .collect();
+        let mut out = Interpolated::default();
+        for (w, rho, pr, v) in rows {
+            out.kernel_sum.push(w);
+            out.density.push(rho);
+            out.pressure.push(pr);
+            out.velocity.extend_from_slice(v.as_slice());
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,229 @@
+//! `watersim._core`: a thin PyO3 binding of `sph-core`.
+//!
+//! It converts (JSON scene in, NumPy views out), releases the GIL around runs and maps the core's
+//! errors to Python exceptions. No physics and no validation logic lives here.
+
+use numpy::ndarray::{ArrayView1, ArrayView2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use sph_core::{Error, Simulation as CoreSimulation};
+
+create_exception!(_core, SceneError, PyValueError, "A scene field is invalid; the message names the field.");
+create_exception!(
+    _core,
+    InstabilityError,
+    PyRuntimeError,
+    "The run went unstable. Attributes: kind, step, time, particle, position."
+);
+
+fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
+    match e {
+        Error::InvalidScene { .. } => SceneError::new_err(e.to_string()),
+        Error::Instability { kind, step, time, particle, ref position, .. } => {
+            let err = InstabilityError::new_err(e.to_string());
+            let value = err.value(py);
+            let set = || -> PyResult<()> {
+                value.setattr("kind", kind.name())?;
+                value.setattr("step", step)?;
+                value.setattr("time", time)?;
+                value.setattr("particle", particle)?;
+                value.setattr("position", position.clone())?;
+                Ok(())
+            };
+            match set() {
+                Ok(()) => err,
+                Err(other) => other,
+            }
+        }
+    }
+}
+
+/// A WCSPH simulation built from a JSON scene (see `watersim.scenes`).
+#[pyclass(module = "watersim._core")]
+struct Simulation {
+    inner: Box<dyn CoreSimulation>,
+}
+
+/// Read-only NumPy view of memory owned by the `Simulation` object `owner`.
+///
+/// Sound because the core allocates its particle arrays once and never reallocates them, and the
+/// view keeps `owner` alive. The contents change with every step (documented in the stub).
+fn view_2d<'py>(owner: &Bound<'py, Simulation>, data: &[f64], dim: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let view = ArrayView2::from_shape((data.len() / dim, dim), data)
+        .map_err(|e| PyRuntimeError::new_err(format!("bad array shape: {e}")))?;
+    // SAFETY: see the function's doc comment.
+    let arr = unsafe { PyArray2::borrow_from_array(&view, owner.clone().into_any()) };
+    arr.call_method1("setflags", ((), (), false))?;
+    Ok(arr)
+}
+
+fn view_1d<'py, T: numpy::Element>(owner: &Bound<'py, Simulation>, data: &[T]) -> PyResult<Bound<'py, PyArray1<T>>> {
+    let view = ArrayView1::from(data);
+    // SAFETY: as in `view_2d`.
+    let arr = unsafe { PyArray1::borrow_from_array(&view, owner.clone().into_any()) };
+    arr.call_method1("setflags", ((), (), false))?;
+    Ok(arr)
+}
+
+#[pymethods]
+impl Simulation {
+    #[new]
+    fn new(py: Python<'_>, scene_json: &str) -> PyResult<Self> {
+        let inner = py.detach(|| sph_core::build_from_json(scene_json)).map_err(|e| to_py_err(py, e))?;
+        Ok(Self { inner })
+    }
+
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    #[getter]
+    fn n_particles(&self) -> usize {
+        self.inner.n_particles()
+    }
+    #[getter]
+    fn n_fluid(&self) -> usize {
+        self.inner.n_fluid()
+    }
+    #[getter]
+    fn n_boundary(&self) -> usize {
+        self.inner.n_particles() - self.inner.n_fluid()
+    }
+    /// Simulated time [s].
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.inner.steps()
+    }
+    /// Last time step [s].
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.inner.dt()
+    }
+
+    /// Advances `n` steps (the GIL is released).
+    #[pyo3(signature = (n = 1))]
+    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
+        let inner = &mut self.inner;
+        py.detach(|| inner.step(n)).map_err(|e| to_py_err(py, e))
+    }
+
+    /// Advances until `time >= until` [s] (the GIL is released).
+    fn run(&mut self, py: Python<'_>, until: f64) -> PyResult<()> {
+        let inner = &mut self.inner;
+        py.detach(|| inner.run_until(until)).map_err(|e| to_py_err(py, e))
+    }
+
+    #[getter]
+    fn positions<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let this = slf.borrow();
+        view_2d(slf, this.inner.positions(), this.inner.dim())
+    }
+    #[getter]
+    fn velocities<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let this = slf.borrow();
+        view_2d(slf, this.inner.velocities(), this.inner.dim())
+    }
+    #[getter]
+    fn densities<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let this = slf.borrow();
+        view_1d(slf, this.inner.densities())
+    }
+    #[getter]
+    fn pressures<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let this = slf.borrow();
+        view_1d(slf, this.inner.pressures())
+    }
+    #[getter]
+    fn kinds<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<u8>>> {
+        let this = slf.borrow();
+        view_1d(slf, this.inner.kinds())
+    }
+    #[getter]
+    fn ids<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<u32>>> {
+        let this = slf.borrow();
+        view_1d(slf, this.inner.ids())
+    }
+
+    /// Bytes of the solver's own arrays.
+    fn memory_bytes(&self) -> usize {
+        self.inner.memory_bytes()
+    }
+
+    /// Derived parameters (h, c0, mass, ...) as a dict.
+    fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let p = self.inner.params();
+        let d = PyDict::new(py);
+        d.set_item("dim", p.dim)?;
+        d.set_item("dp", p.dp)?;
+        d.set_item("h", p.h)?;
+        d.set_item("support", p.support)?;
+        d.set_item("cell_size", p.cell_size)?;
+        d.set_item("n_cells", p.n_cells)?;
+        d.set_item("mass", p.mass)?;
+        d.set_item("rho0", p.rho0)?;
+        d.set_item("c0", p.c0)?;
+        d.set_item("b_tait", p.b_tait)?;
+        d.set_item("gamma", p.gamma)?;
+        d.set_item("boundary_layers", p.boundary_layers)?;
+        d.set_item("kernel", p.kernel)?;
+        d.set_item("viscosity", p.viscosity)?;
+        d.set_item("diffusion", p.diffusion)?;
+        d.set_item("integrator", p.integrator)?;
+        d.set_item("dt_floor", p.dt_floor)?;
+        Ok(d)
+    }
+
+    /// Shepard-normalised interpolation of fluid fields at `points` (M, dim):
+    /// dict of `kernel_sum`, `density`, `pressure` (M,) and `velocity` (M, dim).
+    fn interpolate<'py>(
+        &self,
+        py: Python<'py>,
+        points: numpy::PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let dim = self.inner.dim();
+        let arr = points.as_array();
+        if arr.ncols() != dim {
+            return Err(SceneError::new_err(format!("points: must have shape (M, {dim}), got {:?}", arr.shape())));
+        }
+        let flat: Vec<f64> = arr.iter().copied().collect();
+        let inner = &self.inner;
+        let out = py.detach(|| inner.interpolate(&flat)).map_err(|e| to_py_err(py, e))?;
+        let m = out.kernel_sum.len();
+        let d = PyDict::new(py);
+        d.set_item("kernel_sum", PyArray1::from_vec(py, out.kernel_sum))?;
+        d.set_item("density", PyArray1::from_vec(py, out.density))?;
+        d.set_item("pressure", PyArray1::from_vec(py, out.pressure))?;
+        d.set_item("velocity", PyArray1::from_vec(py, out.velocity).reshape([m, dim])?)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let p = self.inner.params();
+        format!(
+            "Simulation(dim={}, n_particles={}, n_fluid={}, kernel={}, viscosity={}, diffusion={}, t={:.4} s, steps={})",
+            p.dim,
+            self.inner.n_particles(),
+            self.inner.n_fluid(),
+            p.kernel,
+            p.viscosity,
+            p.diffusion,
+            self.inner.time(),
+            self.inner.steps()
+        )
+    }
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Simulation>()?;
+    m.add("SceneError", m.py().get_type::<SceneError>())?;
+    m.add("InstabilityError", m.py().get_type::<InstabilityError>())?;
+    Ok(())
+}

@@ -1,0 +1,38 @@
+"""WaterSim: a weakly-compressible SPH numerical wave flume (Rust core, Python front).
+
+Public names:
+
+- :class:`Simulation`: a running simulation (wrapper of the core's).
+- :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
+- :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
+- :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
+- :func:`front_position`: dam-break surge front from fluid positions.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version
+
+from ._core import InstabilityError, SceneError
+from .measure import front_error, front_position, load_martin_moyce, water_column_height
+from .scenes import DamBreak, SceneBuilder, Tank
+from .simulation import Simulation
+
+try:
+    __version__: str = version("watersim")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
+    __version__ = "0.0.0+unknown"
+
+__all__ = [
+    "DamBreak",
+    "InstabilityError",
+    "SceneBuilder",
+    "SceneError",
+    "Simulation",
+    "Tank",
+    "__version__",
+    "front_error",
+    "front_position",
+    "load_martin_moyce",
+    "water_column_height",
+]

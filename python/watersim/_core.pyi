@@ -1,0 +1,71 @@
+"""Type stub of the compiled extension ``watersim._core`` (crates/sph-py).
+
+Units are SI throughout: metres, seconds, kg/m^3, pascals.
+"""
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+class SceneError(ValueError):
+    """A scene refused before anything runs; the message reads ``field.path: reason``."""
+
+class InstabilityError(RuntimeError):
+    """A run stopped by a stability monitor (NaN/inf, runaway density, ...)."""
+
+    kind: str
+    """Which monitor fired, e.g. ``"non_finite"`` or ``"density_out_of_range"``."""
+    step: int
+    time: float
+    """Simulated time [s]."""
+    particle: int
+    """Original id of the offending particle."""
+    position: list[float]
+    """Where the particle was [m]."""
+
+class Simulation:
+    """A WCSPH simulation built from a scene in its JSON form."""
+
+    def __init__(self, scene_json: str) -> None: ...
+    @property
+    def dim(self) -> int: ...
+    @property
+    def n_particles(self) -> int: ...
+    @property
+    def n_fluid(self) -> int: ...
+    @property
+    def n_boundary(self) -> int: ...
+    @property
+    def time(self) -> float:
+        """Simulated time [s]."""
+    @property
+    def steps(self) -> int: ...
+    @property
+    def dt(self) -> float:
+        """Last time step [s]."""
+    def step(self, n: int = 1) -> None: ...
+    def run(self, until: float) -> None: ...
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """(N, dim) [m], read-only view in storage order, valid until the next step/run."""
+    @property
+    def velocities(self) -> npt.NDArray[np.float64]:
+        """(N, dim) [m/s], read-only view in storage order."""
+    @property
+    def densities(self) -> npt.NDArray[np.float64]:
+        """(N,) [kg/m^3], read-only view in storage order."""
+    @property
+    def pressures(self) -> npt.NDArray[np.float64]:
+        """(N,) [Pa], read-only view in storage order."""
+    @property
+    def kinds(self) -> npt.NDArray[np.uint8]:
+        """(N,) 0 fluid, 1 fixed boundary, 2 moving boundary."""
+    @property
+    def ids(self) -> npt.NDArray[np.uint32]:
+        """(N,) original particle id of each storage slot."""
+    def memory_bytes(self) -> int: ...
+    def params(self) -> dict[str, Any]: ...
+    def interpolate(
+        self, points: npt.NDArray[np.float64]
+    ) -> dict[str, npt.NDArray[np.float64]]: ...

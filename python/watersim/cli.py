@@ -1,0 +1,468 @@
+"""The ``watersim`` command.
+
+::
+
+    watersim run CASE [--set key=value ...] [--out DIR] [--sample-every S] [--quiet]
+    watersim bench [--case dambreak2d|dambreak3d] [--particles N] [--steps K] [--set ...] [--json]
+    watersim scene CASE [--set key=value ...]
+
+CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
+field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
+exits with code 2 and a one-line message naming the field; a run stopped by a stability monitor
+writes what it has and exits with code 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+import time
+import types
+import typing
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any, TextIO
+
+from . import __version__
+from ._core import InstabilityError, SceneError
+from .measure import front_error, front_position, water_column_height
+from .scenes import DamBreak, SceneBuilder, Tank
+from .simulation import Simulation
+
+__all__ = ["CASES", "main"]
+
+CASES: dict[str, tuple[type[SceneBuilder], dict[str, Any]]] = {
+    "dambreak2d": (DamBreak, {"dim": 2}),
+    "dambreak3d": (DamBreak, {"dim": 3}),
+    "tank2d": (Tank, {"dim": 2}),
+    "tank3d": (Tank, {"dim": 3}),
+}
+"""Built-in cases: builder class and the fields the case fixes."""
+
+BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d")
+
+
+class CliError(Exception):
+    """Bad command-line input: printed as one line, exit code 2."""
+
+
+# ------------------------------------------------------------------------------------------------
+# helpers
+
+
+def rayon_threads() -> int:
+    """Number of threads rayon uses: ``RAYON_NUM_THREADS`` if set and positive, else the CPUs
+    this process may run on."""
+    env = os.environ.get("RAYON_NUM_THREADS", "").strip()
+    if env:
+        try:
+            n = int(env)
+        except ValueError:
+            n = 0
+        if n > 0:
+            return n
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def settable_keys(case: str) -> list[str]:
+    """Fields of ``case`` that ``--set`` may change (all but those the case fixes)."""
+    cls, fixed = CASES[case]
+    skip = set(fixed)
+    if fixed.get("dim") == 2:
+        skip.update(cls.THREE_D_ONLY)
+    return sorted(name for name in cls.field_names() if name not in skip)
+
+
+def _parse_value(cls: type[SceneBuilder], key: str, text: str) -> Any:
+    """Convert ``text`` to the type of field ``key`` of ``cls``."""
+    hint = typing.get_type_hints(cls)[key]
+    optional = False
+    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        optional = len(args) < len(typing.get_args(hint))
+        hint = args[0]
+    value = text.strip()
+    if optional and value.lower() in ("none", "null", "auto"):
+        return None
+    if hint is float:
+        try:
+            return float(value)
+        except ValueError:
+            raise CliError(f"{key}: expected a number, got {text!r}") from None
+    if hint is int:
+        try:
+            return int(value)
+        except ValueError:
+            raise CliError(f"{key}: expected an integer, got {text!r}") from None
+    return value
+
+
+def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
+    """The case's builder with ``key=value`` overrides applied (and checked).
+
+    Raises:
+        CliError: unknown case or key, or a value of the wrong type.
+        SceneError: a value the builder refuses.
+    """
+    if case not in CASES:
+        raise CliError(f"case: unknown case {case!r}; valid cases: {', '.join(CASES)}")
+    cls, fixed = CASES[case]
+    valid = settable_keys(case)
+    overrides: dict[str, Any] = {}
+    for item in settings:
+        key, sep, text = item.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise CliError(f"--set: expected key=value, got {item!r}")
+        if key not in valid:
+            why = f"is fixed by the case {case}" if key in fixed else f"is unknown for {case}"
+            raise CliError(f"--set: key {key!r} {why}; valid keys: {', '.join(valid)}")
+        overrides[key] = _parse_value(cls, key, text)
+    return cls(**fixed, **overrides)
+
+
+def _jsonable(value: Any) -> Any:
+    """Replace non-finite floats by None and NumPy scalars/arrays by Python values."""
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if hasattr(value, "tolist"):
+        return _jsonable(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _write_json(path: Path, data: dict[str, Any]) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(_jsonable(data), indent=2, allow_nan=False) + "\n", "utf-8")
+    tmp.replace(path)
+
+
+def _error_record(exc: BaseException) -> dict[str, Any]:
+    """What went wrong, as stored in summary.json."""
+    record: dict[str, Any] = {"type": type(exc).__name__, "message": str(exc)}
+    if isinstance(exc, InstabilityError):
+        for attr in ("kind", "step", "time", "particle", "position"):
+            record[attr] = getattr(exc, attr, None)
+    return record
+
+
+# ------------------------------------------------------------------------------------------------
+# watersim run
+
+
+def _still_water_checks(sim: Simulation, builder: Tank) -> dict[str, Any]:
+    """Largest fluid speed and free-surface level of a still tank, in SI and relative form."""
+    import numpy as np
+
+    assert builder.depth is not None and builder.length is not None and builder.dp is not None
+    pos = sim.fluid_positions()
+    speed = float(np.max(np.linalg.norm(sim.fluid_velocities(), axis=1))) if len(pos) else 0.0
+    x = pos[:, 0]
+    middle = np.abs(x - 0.5 * builder.length) <= 0.25 * builder.length
+    surface = float(pos[middle, -1].max() + 0.5 * builder.dp) if np.any(middle) else math.nan
+    return {
+        "max_speed": speed,
+        "max_speed_over_sqrt_gd": speed / math.sqrt(builder.gravity * builder.depth),
+        "surface_z": surface,
+        "surface_minus_depth_over_dp": (surface - builder.depth) / builder.dp,
+    }
+
+
+class _Recorder:
+    """Run callback: writes front.csv rows (dam breaks) and a progress line every tenth of the run.
+
+    Args:
+        front_file: open CSV file for ``t, x_front, h_column`` rows, or ``None`` (no front).
+        dp: particle spacing [m].
+        until: end time of the run [s].
+        say: where progress lines go (``print`` or a no-op).
+    """
+
+    def __init__(
+        self, front_file: TextIO | None, dp: float, until: float, say: Callable[[str], None]
+    ) -> None:
+        self.dp, self.until, self.say = dp, until, say
+        self.file = front_file
+        self.writer = csv.writer(front_file) if front_file is not None else None
+        if self.writer is not None:
+            self.writer.writerow(["t", "x_front", "h_column"])
+        self.times: list[float] = []
+        self.fronts: list[float] = []
+        self._next_report = 0.0
+
+    def __call__(self, sim: Simulation) -> None:
+        if self.writer is not None and self.file is not None:
+            pos = sim.fluid_positions()
+            x_front = front_position(pos, self.dp)
+            h_column = water_column_height(pos, self.dp)
+            self.times.append(sim.time)
+            self.fronts.append(x_front)
+            self.writer.writerow([repr(sim.time), repr(x_front), repr(h_column)])
+            self.file.flush()  # rows so far survive a crash or an instability
+        if sim.time >= self._next_report:
+            front = f", front {self.fronts[-1]:.3f} m" if self.fronts else ""
+            self.say(f"  t = {sim.time:.3f} s, {sim.steps} steps, dt = {sim.dt:.3g} s{front}")
+            while self._next_report <= sim.time:
+                self._next_report += self.until / 10.0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    """``watersim run``: run a case, write summary.json (and front.csv for dam breaks)."""
+    builder = builder_from_args(args.case, args.set or [])
+    if not (args.sample_every > 0.0 and math.isfinite(args.sample_every)):
+        raise CliError(f"--sample-every: must be a positive number, got {args.sample_every!r}")
+    out = Path(args.out if args.out is not None else Path("runs") / args.case)
+    out.mkdir(parents=True, exist_ok=True)
+    sim = builder.build()
+    until = float(builder.until)  # type: ignore[arg-type]
+    is_dambreak = isinstance(builder, DamBreak)
+    threads = rayon_threads()
+    say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
+    say(
+        f"watersim {__version__}: {args.case}, {sim.n_particles} particles "
+        f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
+    )
+
+    status = "ok"
+    error: dict[str, Any] | None = None
+    t_start = time.perf_counter()
+    front_file = open(out / "front.csv", "w", newline="", encoding="utf-8") if is_dambreak else None
+    recorder = _Recorder(front_file, float(builder.dp), until, say)  # type: ignore[arg-type]
+    try:
+        sim.run(until, callback_every=args.sample_every, callback=recorder)
+    except InstabilityError as exc:
+        status = str(getattr(exc, "kind", "") or "unstable")
+        error = _error_record(exc)
+    except KeyboardInterrupt as exc:
+        status = "interrupted"
+        error = _error_record(exc)
+    except RuntimeError as exc:
+        status = "error"
+        error = _error_record(exc)
+    finally:
+        if front_file is not None:
+            front_file.close()
+    wall = time.perf_counter() - t_start
+
+    summary: dict[str, Any] = {
+        "case": args.case,
+        "status": status,
+        "dim": sim.dim,
+        "n_particles": sim.n_particles,
+        "n_fluid": sim.n_fluid,
+        "n_boundary": sim.n_boundary,
+        "steps": sim.steps,
+        "sim_time": sim.time,
+        "until": until,
+        "wall_s": wall,
+        "threads": threads,
+        "state_sha256": sim.state_sha256(),
+        "memory_bytes": sim.memory_bytes(),
+        "version": __version__,
+        "builder": builder.as_dict(),
+        "scene": sim.scene,
+        "params": sim.params(),
+    }
+    if error is not None:
+        summary["error"] = error
+    if is_dambreak:
+        assert isinstance(builder, DamBreak)
+        summary["front_csv"] = "front.csv"
+        summary["front_final"] = recorder.fronts[-1] if recorder.fronts else None
+        summary["martin_moyce"] = _martin_moyce_summary(builder, recorder.times, recorder.fronts)
+    elif isinstance(builder, Tank) and sim.n_fluid:
+        summary["still_water"] = _still_water_checks(sim, builder)
+    _write_json(out / "summary.json", summary)
+
+    mm = summary.get("martin_moyce") or {}
+    if mm.get("rms_rel_error") is not None:
+        lead = mm.get("mean_lead_s")
+        lead_text = "not reached" if lead is None else f"{lead:+.3f} s"
+        say(
+            f"  front vs Martin & Moyce ({mm['reference']}): RMS relative error "
+            f"{100 * mm['rms_rel_error']:.1f} % over {mm['n_points']} points; "
+            f"mean time lead of the simulation {lead_text}"
+        )
+    say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
+    if error is not None:
+        print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
+        return 130 if status == "interrupted" else 1
+    return 0
+
+
+def _martin_moyce_summary(
+    builder: DamBreak, times: list[float], fronts: list[float]
+) -> dict[str, Any]:
+    """Front error against Martin & Moyce n^2 = 2, or why it was not computed."""
+    if abs(builder.height / builder.width - 2.0) > 0.01:
+        return {"reference": "lethe", "note": "column height is not twice its width (n^2 != 2)"}
+    try:
+        err = front_error(times, fronts, builder.width, builder.gravity, x_max=builder.tank_length)
+    except ValueError as exc:
+        return {"reference": "lethe", "note": str(exc)}
+    return err.as_dict()
+
+
+# ------------------------------------------------------------------------------------------------
+# watersim bench
+
+
+def _scaled_to(builder: SceneBuilder, n_target: int) -> Simulation:
+    """Build ``builder`` with dp chosen so that the particle count is about ``n_target``."""
+    assert builder.dp is not None
+    dp = builder.dp
+    sim = builder.build()
+    for _ in range(6):
+        n = sim.n_particles
+        if abs(n - n_target) <= 0.03 * n_target:
+            break
+        dp *= (n / n_target) ** (1.0 / builder.dim)
+        sim = builder.replace(dp=dp).build()
+    return sim
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    """``watersim bench``: time K steps of a dam break scaled to about N particles."""
+    if args.case not in BENCH_CASES:
+        raise CliError(f"--case: unknown case {args.case!r}; valid: {', '.join(BENCH_CASES)}")
+    if args.particles is not None and args.particles < 10:
+        raise CliError(f"--particles: must be at least 10, got {args.particles}")
+    if args.steps < 1 or args.warmup < 0:
+        raise CliError("--steps: must be at least 1 (and --warmup not negative)")
+    builder = builder_from_args(args.case, args.set or [])
+    sim = _scaled_to(builder, args.particles) if args.particles else builder.build()
+    params = sim.params()
+    threads = rayon_threads()
+    status = "ok"
+    error: dict[str, Any] | None = None
+    wall = math.nan
+    try:
+        if args.warmup:
+            sim.step(args.warmup)
+        t0 = time.perf_counter()
+        sim.step(args.steps)
+        wall = time.perf_counter() - t0
+    except InstabilityError as exc:
+        status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
+    n = sim.n_particles
+    result: dict[str, Any] = {
+        "case": args.case,
+        "status": status,
+        "dim": sim.dim,
+        "n_particles": n,
+        "n_fluid": sim.n_fluid,
+        "steps": args.steps,
+        "warmup_steps": args.warmup,
+        "wall_s": wall,
+        "particle_steps_per_s": n * args.steps / wall if wall > 0 else None,
+        "us_per_particle_step": 1e6 * wall / (n * args.steps) if wall > 0 else None,
+        "bytes_per_particle": sim.memory_bytes() / n,
+        "memory_bytes": sim.memory_bytes(),
+        "threads": threads,
+        "dp": params.get("dp", sim.scene["dp"]),
+        "h": params.get("h"),
+        "kernel": sim.scene["kernel"],
+        "coefh": sim.scene["coefh"],
+        "viscosity": sim.scene["viscosity"]["model"],
+        "diffusion": sim.scene["diffusion"]["model"],
+        "integrator": sim.scene["integrator"]["scheme"],
+        "sim_time": sim.time,
+        "version": __version__,
+    }
+    if error is not None:
+        result["error"] = error
+    if args.json:
+        print(json.dumps(_jsonable(result), allow_nan=False))
+    else:
+        for key, value in result.items():
+            print(f"{key:>22}: {value}")
+    return 0 if error is None else 1
+
+
+# ------------------------------------------------------------------------------------------------
+# watersim scene
+
+
+def cmd_scene(args: argparse.Namespace) -> int:
+    """``watersim scene``: print the scene JSON of a case, checked by Python and by the core."""
+    builder = builder_from_args(args.case, args.set or [])
+    scene = builder.to_scene()
+    sim = Simulation(scene)
+    shown = {"scene": scene, "params": sim.params(), "n_particles": sim.n_particles}
+    print(json.dumps(_jsonable(shown), indent=2))
+    return 0
+
+
+# ------------------------------------------------------------------------------------------------
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``watersim`` command."""
+    parser = argparse.ArgumentParser(
+        prog="watersim", description="WaterSim: weakly-compressible SPH wave flume."
+    )
+    parser.add_argument("--version", action="version", version=f"watersim {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    set_help = "override a case parameter (repeatable), e.g. --set dp=0.04"
+    run = sub.add_parser("run", help="run a built-in case and write summary.json")
+    run.add_argument("case", metavar="CASE", help=f"one of: {', '.join(CASES)}")
+    run.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
+    run.add_argument("--out", metavar="DIR", help="output folder (default: runs/CASE)")
+    run.add_argument(
+        "--sample-every",
+        type=float,
+        default=0.01,
+        metavar="S",
+        help="front sampling interval in simulated seconds (default 0.01)",
+    )
+    run.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    run.set_defaults(func=cmd_run)
+
+    bench = sub.add_parser("bench", help="time the solver on a dam break scaled to N particles")
+    bench.add_argument("--case", default="dambreak2d", help=f"one of: {', '.join(BENCH_CASES)}")
+    bench.add_argument(
+        "--particles",
+        type=int,
+        default=None,
+        metavar="N",
+        help="about this many particles (default: the case's own dp)",
+    )
+    bench.add_argument("--steps", type=int, default=20, metavar="K", help="timed steps (20)")
+    bench.add_argument("--warmup", type=int, default=3, metavar="W", help="untimed steps (3)")
+    bench.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
+    bench.add_argument("--json", action="store_true", help="print one JSON object")
+    bench.set_defaults(func=cmd_bench)
+
+    scene = sub.add_parser("scene", help="print a case's scene JSON and derived parameters")
+    scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(CASES)}")
+    scene.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
+    scene.set_defaults(func=cmd_scene)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``watersim`` command; returns the exit code."""
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args))
+    except (CliError, SceneError) as exc:
+        print(f"watersim: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"watersim: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Reference data shipped with WaterSim (see SOURCES.md in this folder)."""

@@ -1,0 +1,224 @@
+"""A thin Python wrapper around the core's ``Simulation``.
+
+The core keeps particles in its own (cell-sorted) storage order, which changes every step, and
+hands out read-only NumPy views of its arrays that are valid only until the next ``step``/``run``.
+This wrapper adds what a user needs on top: copies of the fluid state, a state hash in particle-id
+order (independent of the storage order), and a ``run`` that calls back at regular sample times.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+
+__all__ = ["Simulation"]
+
+FLUID: int = 0
+"""Particle kind code of fluid particles."""
+FIXED_BOUNDARY: int = 1
+"""Particle kind code of fixed wall particles."""
+MOVING_BOUNDARY: int = 2
+"""Particle kind code of moving wall particles."""
+
+
+class Simulation:
+    """A WCSPH simulation of one scene.
+
+    Args:
+        scene: the scene, as a dict in the core's JSON form (``SceneBuilder.to_scene()``) or as
+            a JSON string.
+
+    Raises:
+        SceneError: the core refused the scene (message ``field.path: reason``).
+
+    Array properties (``positions``, ``velocities``, ``densities``, ``pressures``, ``kinds``,
+    ``ids``) are read-only views in the solver's storage order, valid until the next
+    :meth:`step` or :meth:`run`: copy what you keep.
+    """
+
+    def __init__(self, scene: Mapping[str, Any] | str) -> None:
+        if isinstance(scene, str):
+            scene_json = scene
+            self.scene: dict[str, Any] = json.loads(scene)
+        else:
+            self.scene = dict(scene)
+            scene_json = json.dumps(self.scene)
+        self._sim = _core.Simulation(scene_json)
+
+    # -- pass-through ---------------------------------------------------------------------------
+
+    @property
+    def core(self) -> _core.Simulation:
+        """The underlying ``watersim._core.Simulation``."""
+        return self._sim
+
+    @property
+    def dim(self) -> int:
+        """Number of space dimensions (2 or 3)."""
+        return self._sim.dim
+
+    @property
+    def n_particles(self) -> int:
+        """Number of particles, fluid and boundary."""
+        return self._sim.n_particles
+
+    @property
+    def n_fluid(self) -> int:
+        """Number of fluid particles."""
+        return self._sim.n_fluid
+
+    @property
+    def n_boundary(self) -> int:
+        """Number of boundary (wall) particles."""
+        return self._sim.n_boundary
+
+    @property
+    def time(self) -> float:
+        """Simulated time [s]."""
+        return self._sim.time
+
+    @property
+    def steps(self) -> int:
+        """Number of time steps taken."""
+        return self._sim.steps
+
+    @property
+    def dt(self) -> float:
+        """Last time step [s]."""
+        return self._sim.dt
+
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """(N, dim) positions [m], read-only view in storage order."""
+        return self._sim.positions
+
+    @property
+    def velocities(self) -> npt.NDArray[np.float64]:
+        """(N, dim) velocities [m/s], read-only view in storage order."""
+        return self._sim.velocities
+
+    @property
+    def densities(self) -> npt.NDArray[np.float64]:
+        """(N,) densities [kg/m^3], read-only view in storage order."""
+        return self._sim.densities
+
+    @property
+    def pressures(self) -> npt.NDArray[np.float64]:
+        """(N,) pressures [Pa], read-only view in storage order."""
+        return self._sim.pressures
+
+    @property
+    def kinds(self) -> npt.NDArray[np.uint8]:
+        """(N,) particle kinds: 0 fluid, 1 fixed boundary, 2 moving boundary."""
+        return self._sim.kinds
+
+    @property
+    def ids(self) -> npt.NDArray[np.uint32]:
+        """(N,) original particle id of each storage slot."""
+        return self._sim.ids
+
+    def step(self, n: int = 1) -> None:
+        """Advance ``n`` time steps.
+
+        Raises:
+            InstabilityError: a stability monitor stopped the run.
+        """
+        self._sim.step(n)
+
+    def memory_bytes(self) -> int:
+        """Bytes of the solver's own particle and cell arrays (capacity-based)."""
+        return self._sim.memory_bytes()
+
+    def params(self) -> dict[str, Any]:
+        """Derived parameters: ``h``, ``c0``, ``mass``, ``b_tait``, ``rho0``, ``dp``, ..."""
+        return self._sim.params()
+
+    def interpolate(self, points: npt.ArrayLike) -> dict[str, npt.NDArray[np.float64]]:
+        """Shepard-normalised SPH interpolation of the fluid at ``points`` (M, dim) [m].
+
+        Returns a dict with ``"pressure"`` (M,) [Pa], ``"density"`` (M,) [kg/m^3],
+        ``"velocity"`` (M, dim) [m/s] and ``"kernel_sum"`` (M,) (sum of V_b W_b: about 1 inside
+        the fluid, 0 outside).
+        """
+        pts = np.ascontiguousarray(points, dtype=np.float64)
+        if pts.ndim == 1:
+            pts = pts.reshape(1, -1)
+        if pts.ndim != 2 or pts.shape[1] != self.dim:
+            raise ValueError(f"points: expected shape (M, {self.dim}), got {pts.shape}")
+        return self._sim.interpolate(pts)
+
+    # -- additions ------------------------------------------------------------------------------
+
+    def fluid_mask(self) -> npt.NDArray[np.bool_]:
+        """(N,) True for fluid particles, in the current storage order."""
+        return np.asarray(self._sim.kinds) == FLUID
+
+    def fluid_positions(self) -> npt.NDArray[np.float64]:
+        """(n_fluid, dim) copy of the fluid positions [m], in storage order."""
+        return np.array(self._sim.positions[self.fluid_mask()], dtype=np.float64)
+
+    def fluid_velocities(self) -> npt.NDArray[np.float64]:
+        """(n_fluid, dim) copy of the fluid velocities [m/s], in storage order."""
+        return np.array(self._sim.velocities[self.fluid_mask()], dtype=np.float64)
+
+    def state_sha256(self) -> str:
+        """SHA-256 (hex) of the state in particle-id order.
+
+        The digest covers the positions, then the velocities, then the densities of all
+        particles, each sorted by particle id and written as little-endian float64 bytes
+        (row-major for the (N, dim) arrays), concatenated in that order. It does not depend on
+        the solver's storage order, so two runs agree exactly when their states are bit-identical.
+        """
+        order = np.argsort(np.asarray(self._sim.ids), kind="stable")
+        digest = hashlib.sha256()
+        for array in (self._sim.positions, self._sim.velocities, self._sim.densities):
+            sorted_le = np.ascontiguousarray(np.asarray(array)[order], dtype="<f8")
+            digest.update(sorted_le.tobytes())
+        return digest.hexdigest()
+
+    def run(
+        self,
+        until: float,
+        callback_every: float | None = None,
+        callback: Callable[[Simulation], None] | None = None,
+    ) -> None:
+        """Advance until ``time >= until`` [s], optionally calling back at sample times.
+
+        With ``callback``, it is called once at the current time before stepping, then each time
+        the simulation reaches ``t0 + k * callback_every`` (k = 1, 2, ...) and finally at
+        ``until``. The call sees the state at the first step that reaches the sample time, so
+        ``sim.time`` may be past it by less than one ``dt``: record ``sim.time``.
+
+        Raises:
+            InstabilityError: a stability monitor stopped the run; samples taken before it were
+                passed to ``callback``, and the last good state stays readable.
+        """
+        if not math.isfinite(until):
+            raise ValueError(f"until: must be finite, got {until!r}")
+        if callback is None:
+            self._sim.run(until)
+            return
+        if callback_every is None or not (callback_every > 0.0 and math.isfinite(callback_every)):
+            raise ValueError(f"callback_every: must be a positive number, got {callback_every!r}")
+        t0 = self._sim.time
+        callback(self)
+        k = 1
+        # A sample closer than 1e-9 of an interval to `until` is merged with the final one.
+        while t0 + k * callback_every < until - 1e-9 * callback_every:
+            target = t0 + k * callback_every
+            k += 1
+            if self._sim.time >= target:
+                continue
+            self._sim.run(target)
+            callback(self)
+        if self._sim.time < until:
+            self._sim.run(until)
+            callback(self)
