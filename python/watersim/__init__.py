@@ -7,12 +7,14 @@ Public names:
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
 - :func:`front_position`: dam-break surge front from fluid positions.
+- :mod:`wave_theory`, :mod:`analysis`: wave-maker theory and gauge analysis.
 """
 
 from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
+from . import analysis, wave_theory
 from ._core import InstabilityError, SceneError
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
@@ -31,8 +33,10 @@ __all__ = [
     "Simulation",
     "Tank",
     "__version__",
+    "analysis",
     "front_error",
     "front_position",
     "load_martin_moyce",
     "water_column_height",
+    "wave_theory",
 ]

@@ -69,3 +69,8 @@ class Simulation:
     def interpolate(
         self, points: npt.NDArray[np.float64]
     ) -> dict[str, npt.NDArray[np.float64]]: ...
+    def gauges(self) -> list[dict[str, Any]]:
+        """Gauge records in the scene's order: dicts with ``name``, ``type``, ``t`` (n,) [s] and
+        ``z`` (n,) [m, NaN when dry] for elevation and run-up gauges, or ``velocity``
+        (n, points, dim) [m/s], ``kernel_sum`` (n, points) and ``points`` (points, dim) [m] for
+        velocity probes and windows (windows add ``shape``, the counts per axis, x fastest)."""

@@ -21,6 +21,9 @@ pub struct Sampled<D: Dim> {
     pub fluid: Vec<D::V>,
     /// Top of the fluid box each fluid particle came from.
     pub fluid_surface: Vec<Real>,
+    /// Paddle particles at rest (moved by the motion law), with their water level.
+    pub moving: Vec<D::V>,
+    pub moving_surface: Vec<Option<Real>>,
 }
 
 enum Solid<D: Dim> {
@@ -78,7 +81,15 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
     let thickness = layers as Real * dp;
     let half = 0.5 * dp;
     let tol = 1e-9 * dp;
-    let mut out = Sampled { walls: Vec::new(), wall_surface: Vec::new(), fluid: Vec::new(), fluid_surface: Vec::new() };
+    let mut out = Sampled {
+        walls: Vec::new(),
+        wall_surface: Vec::new(),
+        fluid: Vec::new(),
+        fluid_surface: Vec::new(),
+        moving: Vec::new(),
+        moving_surface: Vec::new(),
+    };
+    let paddle_face = scene.paddle.as_ref().map(|p| p.x);
     let vertical = dim - 1;
     let mut idx = [0i64; 3];
     for iz in lo[2]..hi[2] {
@@ -126,10 +137,16 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
                 if solids.iter().any(|s| s.signed_distance(p) < half - tol) {
                     continue;
                 }
+                if paddle_face.is_some_and(|x| p.get(0) < x + half - tol) {
+                    continue;
+                }
                 out.fluid.push(p);
                 out.fluid_surface.push(top);
             }
         }
+    }
+    if let Some(paddle) = &scene.paddle {
+        sample_paddle::<D>(scene, paddle, &fluid_boxes, &mut out);
     }
     if out.fluid.is_empty() {
         return Err(Error::invalid(
@@ -138,6 +155,40 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
         ));
     }
     Ok(out)
+}
+
+/// The paddle: `layers` lattice layers behind its face `x`, from the tank floor to the tank top
+/// and across the tank's inner width. A flap's part below its hinge is a fixed wall.
+fn sample_paddle<D: Dim>(scene: &Scene, paddle: &crate::motion::Paddle, boxes: &[(D::V, D::V)], out: &mut Sampled<D>) {
+    let dim = D::DIM;
+    let dp = scene.dp;
+    let up = dim - 1;
+    let layers = scene.layers();
+    let floor = scene.tank.min[up];
+    let hinge = paddle.hinge_z.unwrap_or(floor);
+    let thickness = layers as Real * dp;
+    let nz = ((scene.tank.max[up] - floor) / dp - 1e-9).ceil() as usize;
+    let ny = if dim == 3 { ((scene.tank.max[1] - scene.tank.min[1]) / dp - 1e-9).ceil() as usize } else { 1 };
+    for iz in 0..nz {
+        for iy in 0..ny {
+            for j in 0..layers {
+                let mut p = D::V::ZERO;
+                p.set(0, paddle.x - (j as Real + 0.5) * dp);
+                if dim == 3 {
+                    p.set(1, scene.tank.min[1] + (iy as Real + 0.5) * dp);
+                }
+                p.set(up, floor + (iz as Real + 0.5) * dp);
+                let surface = surface_above::<D>(boxes, p, thickness);
+                if p.get(up) < hinge {
+                    out.walls.push(p);
+                    out.wall_surface.push(surface);
+                } else {
+                    out.moving.push(p);
+                    out.moving_surface.push(surface);
+                }
+            }
+        }
+    }
 }
 
 /// Highest fluid-box top over the horizontal position of `p` (within `margin`), if it is above `p`.

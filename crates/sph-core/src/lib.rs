@@ -9,16 +9,20 @@ pub mod error;
 pub mod geometry;
 pub mod kernel;
 pub mod math;
+pub mod motion;
 pub mod neighbours;
 pub mod particles;
 pub mod physics;
+pub mod probes;
 pub mod scene;
 pub mod simulation;
 
 pub use error::{Error, InstabilityKind, Result};
 pub use kernel::{CubicSpline, Kernel, KernelKind, WendlandC2};
 pub use math::{Dim, Dim2, Dim3, Real};
-pub use scene::{Diffusion, Integrator, Obstacle, Scene, Viscosity};
+pub use motion::{MotionLaw, Paddle, PaddleKind};
+pub use probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
+pub use scene::{Damping, Diffusion, Integrator, Obstacle, Scene, Viscosity};
 pub use simulation::{Interpolated, Params, Simulation, Solver};
 
 use physics::{diff_code, visc_code, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR, VISC_LAMINAR_SPS};

@@ -8,6 +8,8 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
+use crate::motion::{Paddle, PaddleKind};
+use crate::probes::GaugeSpec;
 
 /// Viscosity model (DESIGN.md section 2). One per scene.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -78,6 +80,23 @@ pub enum Obstacle {
     Plane { point: Vec<Real>, normal: Vec<Real> },
 }
 
+/// Velocity damping zone at the far end of a flume (DualSPHysics' damping zone form):
+/// after each step, fluid velocities are scaled by `1 - dt * strength * s^2`, where
+/// `s = (x - x_start) / (x_end - x_start)` clamped to `[0, 1]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Damping {
+    pub x_start: Real,
+    pub x_end: Real,
+    /// Largest reduction rate [1/s].
+    #[serde(default = "default_damping_strength")]
+    pub strength: Real,
+}
+
+fn default_damping_strength() -> Real {
+    10.0
+}
+
 /// A complete scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -126,6 +145,13 @@ pub struct Scene {
     /// Density band of the stability monitor: a density outside `rho0 (1 -+ x)` stops the run.
     #[serde(default = "default_density_band")]
     pub density_band: Real,
+    /// Wave-maker paddle; none for tanks and dam breaks.
+    #[serde(default)]
+    pub paddle: Option<Paddle>,
+    #[serde(default)]
+    pub damping: Option<Damping>,
+    #[serde(default)]
+    pub gauges: Vec<GaugeSpec>,
 }
 
 fn default_gravity() -> Real {
@@ -322,6 +348,7 @@ impl Scene {
                 }
             }
         }
+        self.validate_flume()?;
         for k in 0..dim {
             let extent = self.tank.max[k] - self.tank.min[k];
             if extent < 2.0 * self.dp {
@@ -329,6 +356,80 @@ impl Scene {
                     "tank",
                     format!("extent {extent} along axis {k} is smaller than 2 dp = {}", 2.0 * self.dp),
                 ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// Still-water level: the top of the highest fluid box.
+    pub fn still_water_level(&self) -> Real {
+        let up = self.dim - 1;
+        self.fluid.iter().map(|b| b.max[up]).fold(Real::NEG_INFINITY, Real::max)
+    }
+
+    /// Paddle, damping zone and gauges.
+    fn validate_flume(&self) -> Result<()> {
+        let dim = self.dim;
+        let up = dim - 1;
+        let tol = 1e-9 * self.dp;
+        if let Some(p) = &self.paddle {
+            if !p.x.is_finite() {
+                return Err(Error::invalid("paddle.x", format!("must be finite, got {}", p.x)));
+            }
+            p.law.validate("paddle.law")?;
+            let back = p.x - self.layers() as Real * self.dp - p.law.max_backward_excursion();
+            if back < self.tank.min[0] - tol || p.x >= self.tank.max[0] {
+                return Err(Error::invalid(
+                    "paddle.x",
+                    format!(
+                        "the paddle at x = {} ({} layers of dp thick, moving back by up to {:.4} m) must lie inside the tank [{}, {}]",
+                        p.x,
+                        self.layers(),
+                        p.law.max_backward_excursion(),
+                        self.tank.min[0],
+                        self.tank.max[0]
+                    ),
+                ));
+            }
+            for (i, b) in self.fluid.iter().enumerate() {
+                if b.min[0] < p.x - tol {
+                    return Err(Error::invalid(
+                        format!("fluid[{i}]"),
+                        format!("starts at x = {} behind the paddle face x = {}", b.min[0], p.x),
+                    ));
+                }
+            }
+            if let Some(z) = p.hinge_z {
+                if !z.is_finite() || z < self.tank.min[up] || z >= self.tank.max[up] {
+                    return Err(Error::invalid("paddle.hinge_z", format!("must lie within the tank height, got {z}")));
+                }
+            }
+            if let Some(z) = p.swl_z {
+                if !z.is_finite() || z <= p.hinge_z.unwrap_or(self.tank.min[up]) {
+                    return Err(Error::invalid("paddle.swl_z", format!("must be above the hinge, got {z}")));
+                }
+            }
+            if p.kind == PaddleKind::Piston && p.hinge_z.is_some() {
+                return Err(Error::invalid("paddle.hinge_z", "only a flap has a hinge"));
+            }
+        }
+        if let Some(d) = &self.damping {
+            if !d.x_start.is_finite() || !d.x_end.is_finite() || d.x_end <= d.x_start {
+                return Err(Error::invalid(
+                    "damping",
+                    format!("x_end ({}) must be finite and greater than x_start ({})", d.x_end, d.x_start),
+                ));
+            }
+            check_non_negative("damping.strength", d.strength)?;
+        }
+        let mut names = std::collections::HashSet::new();
+        for (i, g) in self.gauges.iter().enumerate() {
+            let f = format!("gauges[{i}]");
+            g.validate(&f, dim, &self.tank.min, &self.tank.max)?;
+            if !names.insert(g.name().to_string()) {
+                return Err(Error::invalid(format!("{f}.name"), format!("duplicate gauge name {:?}", g.name())));
             }
         }
         Ok(())

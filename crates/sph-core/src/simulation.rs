@@ -11,11 +11,32 @@ use crate::geometry;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
-use crate::particles::{permute, Particles, KIND_FIXED, KIND_FLUID};
+use crate::motion::PaddlePose;
+use crate::particles::{permute, Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING};
+use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{boundary_density_rate, fluid_forces, sps_stress, Fields, StepLimits};
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
 use crate::scene::{Integrator, Scene};
+
+trait NanIfInfinite {
+    fn pipe_nan(self) -> Self;
+}
+impl NanIfInfinite for Real {
+    /// `-inf` (an empty maximum) becomes NaN: "no water here".
+    fn pipe_nan(self) -> Self {
+        if self.is_finite() {
+            self
+        } else {
+            Real::NAN
+        }
+    }
+}
+
+/// Half-width, in dp, of the band around a particle-method gauge line. Seed 001 uses dp/2, but a
+/// band exactly one spacing wide misses the column whenever two particles straddle the line at
+/// a hair more than dp/2; 0.75 dp always holds one.
+const PARTICLE_GAUGE_HALF_WIDTH: Real = 0.75;
 
 /// Cells of half the kernel support: fewer candidate pairs than `2h` cells (see `neighbours.rs`).
 const NEIGHBOUR_REACH: usize = 2;
@@ -79,6 +100,8 @@ pub trait Simulation: Send + Sync {
     fn params(&self) -> Params;
     /// Interpolates fluid fields at flattened `(M, dim)` points.
     fn interpolate(&self, points: &[Real]) -> Result<Interpolated>;
+    /// Gauge records, in the scene's order.
+    fn gauges(&self) -> &[GaugeRecord];
 }
 
 /// Integrator history.
@@ -112,6 +135,13 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     steps: u64,
     dt: Real,
     dt_floor: Real,
+    /// Rest positions of the paddle particles, indexed by `id - n_fixed` (ids travel with the
+    /// particles through the cell sort, so this array never needs permuting). Empty without a
+    /// paddle.
+    moving_ref: Vec<D::V>,
+    /// Resolved hinge height and still-water level of the paddle.
+    paddle_levels: (Real, Real),
+    gauges: Vec<GaugeRecord>,
 }
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
@@ -121,7 +151,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let kernel = K::new(c.h, D::DIM);
         let sampled = geometry::sample::<D>(&scene)?;
         let n_fixed = sampled.walls.len();
-        let n = n_fixed + sampled.fluid.len();
+        let n_moving = sampled.moving.len();
+        let n = n_fixed + n_moving + sampled.fluid.len();
         let up = D::DIM - 1;
 
         let hydrostatic = |surface: Real, z: Real| -> Real {
@@ -129,7 +160,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         };
         let mut pos = Vec::with_capacity(n);
         let mut rho = Vec::with_capacity(n);
-        for (p, s) in sampled.walls.iter().zip(&sampled.wall_surface) {
+        let walls = sampled.walls.iter().zip(&sampled.wall_surface);
+        for (p, s) in walls.chain(sampled.moving.iter().zip(&sampled.moving_surface)) {
             pos.push(*p);
             rho.push(s.map_or(c.rho0, |s| hydrostatic(s, p.get(up))));
         }
@@ -138,8 +170,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             rho.push(hydrostatic(s, p.get(up)));
         }
         let mut kind = vec![KIND_FIXED; n_fixed];
+        kind.resize(n_fixed + n_moving, KIND_MOVING);
         kind.resize(n, KIND_FLUID);
-        let n_fluid = n - n_fixed;
+        let n_fluid = n - n_fixed - n_moving;
         let p = Particles::<D> {
             pos,
             vel: vec![D::V::ZERO; n],
@@ -150,7 +183,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             acc: vec![D::V::ZERO; n_fluid],
             drho: vec![0.0; n],
             n_fixed,
-            n_moving: 0,
+            n_moving,
         };
 
         // Grid: the tank plus its walls, and as much again above the tank for splashes.
@@ -194,12 +227,205 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             steps: 0,
             dt: 0.0,
             dt_floor,
+            moving_ref: sampled.moving,
+            paddle_levels: (0.0, 0.0),
+            gauges: Vec::new(),
         };
+        if let Some(paddle) = &solver.scene.paddle {
+            let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
+            let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
+            solver.paddle_levels = (hinge, swl);
+        }
+        solver.gauges = solver.scene.gauges.iter().map(|g| solver.new_record(g)).collect();
+        solver.move_boundaries(0.0);
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
+        solver.sort_group(GROUP_MOVING);
         solver.sort_group(GROUP_FLUID);
         solver.refresh_pressure();
+        solver.sample_gauges();
         Ok(solver)
+    }
+
+    /// Places the paddle particles where the motion law puts them at time `t`, with its velocity.
+    fn move_boundaries(&mut self, t: Real) {
+        let Some(paddle) = &self.scene.paddle else { return };
+        let (hinge, swl) = self.paddle_levels;
+        let pose: PaddlePose = paddle.pose(t, hinge, swl);
+        let range = self.p.n_fixed..self.p.fluid_start();
+        let up = D::DIM - 1;
+        let (n_fixed, reference) = (self.p.n_fixed as u32, &self.moving_ref);
+        let ids = &self.p.id[range.clone()];
+        let (pos, vel) = (&mut self.p.pos[range.clone()], &mut self.p.vel[range]);
+        pos.par_iter_mut().zip(vel.par_iter_mut()).zip(ids.par_iter()).for_each(|((x, v), &id)| {
+            let r = reference[(id - n_fixed) as usize];
+            let (xz, uw) = pose.apply(r.get(0), r.get(up));
+            *x = r;
+            x.set(0, xz[0]);
+            x.set(up, xz[1]);
+            *v = D::V::ZERO;
+            v.set(0, uw[0]);
+            v.set(up, uw[1]);
+        });
+    }
+
+    /// Velocity damping zone (see [`crate::scene::Damping`]).
+    fn damp(&mut self, dt: Real) {
+        let Some(d) = self.scene.damping else { return };
+        let fs = self.p.fluid_start();
+        let inv_len = 1.0 / (d.x_end - d.x_start);
+        let (pos, vel) = (&self.p.pos[fs..], &mut self.p.vel[fs..]);
+        vel.par_iter_mut().zip(pos.par_iter()).for_each(|(v, x)| {
+            let s = ((x.get(0) - d.x_start) * inv_len).clamp(0.0, 1.0);
+            if s > 0.0 {
+                *v = *v * (1.0 - dt * d.strength * s * s).max(0.0);
+            }
+        });
+    }
+
+    fn new_record(&self, g: &GaugeSpec) -> GaugeRecord {
+        let points = g.sample_points(D::DIM);
+        let width = match g {
+            GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => 1,
+            _ => points.len() * (D::DIM + 1),
+        };
+        GaugeRecord {
+            name: g.name().to_string(),
+            kind: g.kind(),
+            t: Vec::new(),
+            values: Vec::new(),
+            width,
+            points: points.into_iter().flatten().collect(),
+            shape: if let GaugeSpec::Window { n, .. } = g { n.clone() } else { Vec::new() },
+            next_time: 0.0,
+        }
+    }
+
+    /// Shepard sums at `x`: kernel volume sum, and the normalised density, pressure, velocity.
+    fn shepard(&self, x: D::V) -> (Real, Real, Real, D::V) {
+        let support2 = self.c.support * self.c.support;
+        let p = &self.p;
+        let (mut w_sum, mut rho, mut pr, mut vel) = (0.0, 0.0, 0.0, D::V::ZERO);
+        self.grid.for_each_near(GROUP_FLUID, x, |b| {
+            let r2 = (x - p.pos[b]).length_squared();
+            if r2 >= support2 {
+                return;
+            }
+            let vw = self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
+            w_sum += vw;
+            rho += vw * p.rho[b];
+            pr += vw * p.press[b];
+            vel += p.vel[b] * vw;
+        });
+        if w_sum > 0.0 {
+            (w_sum, rho / w_sum, pr / w_sum, vel * (1.0 / w_sum))
+        } else {
+            (0.0, 0.0, 0.0, D::V::ZERO)
+        }
+    }
+
+    /// Along the points `a + (b - a) s`, s from 0 to 1 every dp/2, the last point (from `b`
+    /// backwards) where the kernel volume sum reaches 0.5, linearly interpolated; returns that
+    /// point's vertical coordinate, or NaN if no point is wet.
+    fn last_wet_along(&self, a: D::V, b: D::V) -> Real {
+        let len = (b - a).length();
+        let n = ((len / (0.5 * self.c.dp)).ceil() as usize).max(1);
+        let at = |i: usize| a + (b - a) * (i as Real / n as Real);
+        let top = self.shepard(at(n)).0;
+        if top >= 0.5 {
+            return at(n).vertical();
+        }
+        let mut above = (at(n), top);
+        for i in (0..n).rev() {
+            let x = at(i);
+            let w = self.shepard(x).0;
+            if w >= 0.5 {
+                let s = (w - 0.5) / (w - above.1).max(Real::EPSILON);
+                return (x + (above.0 - x) * s.clamp(0.0, 1.0)).vertical();
+            }
+            above = (x, w);
+        }
+        Real::NAN
+    }
+
+    /// Highest vertical coordinate of fluid particles accepted by `near`, or NaN.
+    fn highest_fluid(&self, near: impl Fn(D::V) -> bool + Sync) -> Real {
+        let fs = self.p.fluid_start();
+        self.p.pos[fs..]
+            .par_iter()
+            .filter(|&&x| near(x))
+            .map(|x| x.vertical())
+            .reduce(|| Real::NEG_INFINITY, Real::max)
+            .pipe_nan()
+    }
+
+    /// Records every gauge whose next sample time has come.
+    fn sample_gauges(&mut self) {
+        let t = self.time;
+        let up = D::DIM - 1;
+        let half = 0.5 * self.c.dp;
+        let mut records = std::mem::take(&mut self.gauges);
+        for (rec, spec) in records.iter_mut().zip(&self.scene.gauges) {
+            if t < rec.next_time {
+                continue;
+            }
+            match spec {
+                GaugeSpec::Elevation { position, method, .. } => {
+                    let mut foot = D::V::from_slice(position);
+                    let z = match method {
+                        SurfaceMethod::Kernel => {
+                            foot.set(up, self.scene.tank.min[up]);
+                            let mut top = foot;
+                            top.set(up, self.scene.tank.max[up]);
+                            self.last_wet_along(foot, top)
+                        }
+                        SurfaceMethod::Particle => {
+                            let h2 = PARTICLE_GAUGE_HALF_WIDTH * PARTICLE_GAUGE_HALF_WIDTH * self.c.dp * self.c.dp;
+                            let z = self.highest_fluid(|x| {
+                                let mut d = x - foot;
+                                d.set(up, 0.0);
+                                d.length_squared() <= h2
+                            });
+                            z + half
+                        }
+                    };
+                    rec.values.push(z);
+                }
+                GaugeSpec::Runup { start, end, method, .. } => {
+                    let (a, b) = (D::V::from_slice(start), D::V::from_slice(end));
+                    let z = match method {
+                        SurfaceMethod::Kernel => self.last_wet_along(a, b),
+                        SurfaceMethod::Particle => {
+                            let band2 = (3.0 * half) * (3.0 * half);
+                            let ab = b - a;
+                            let inv = 1.0 / ab.length_squared();
+                            self.highest_fluid(|x| {
+                                let s = ((x - a).dot(ab) * inv).clamp(0.0, 1.0);
+                                (x - (a + ab * s)).length_squared() <= band2
+                            })
+                        }
+                    };
+                    rec.values.push(z);
+                }
+                GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
+                    let values: Vec<Real> = rec
+                        .points
+                        .par_chunks(D::DIM)
+                        .flat_map_iter(|pt| {
+                            let (w, _, _, v) = self.shepard(D::V::from_slice(pt));
+                            v.as_slice().iter().copied().chain(std::iter::once(w)).collect::<Vec<_>>()
+                        })
+                        .collect();
+                    rec.values.extend_from_slice(&values);
+                }
+            }
+            rec.t.push(t);
+            let interval = spec.interval();
+            while rec.next_time <= t {
+                rec.next_time += interval;
+            }
+        }
+        self.gauges = records;
     }
 
     fn group_range(&self, g: usize) -> std::ops::Range<usize> {
@@ -376,7 +602,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                     *v += a * half;
                 });
 
-                // Corrector.
+                // Corrector, with the paddle at mid-step.
+                self.move_boundaries(self.time + half);
                 let _ = self.compute_forces();
                 let History::Symplectic { pos0, vel0, rho0: rho_n } = &self.history else { unreachable!() };
                 let p = &mut self.p;
@@ -436,11 +663,17 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 self.dt = dt;
             }
         }
+        self.damp(self.dt);
         self.time += self.dt;
         self.steps += 1;
+        self.move_boundaries(self.time);
         // Pressures readable between steps match the densities.
         self.refresh_pressure();
-        self.check()
+        self.check()?;
+        if !self.gauges.is_empty() {
+            self.sample_gauges();
+        }
+        Ok(())
     }
 }
 
@@ -513,6 +746,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()
+            + self.moving_ref.capacity() * v
             + self.grid.memory_bytes()
             + scratch
     }
@@ -558,30 +792,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             return Err(Error::invalid("points", format!("coordinates must be finite, got {x}")));
         }
         let m = points.len() / D::DIM;
-        let support2 = self.c.support * self.c.support;
-        let p = &self.p;
         let rows: Vec<(Real, Real, Real, D::V)> = (0..m)
             .into_par_iter()
-            .map(|i| {
-                let x = D::V::from_slice(&points[i * D::DIM..(i + 1) * D::DIM]);
-                let (mut w_sum, mut rho, mut pr, mut vel) = (0.0, 0.0, 0.0, D::V::ZERO);
-                self.grid.for_each_near(GROUP_FLUID, x, |b| {
-                    let r2 = (x - p.pos[b]).length_squared();
-                    if r2 >= support2 {
-                        return;
-                    }
-                    let vw = self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
-                    w_sum += vw;
-                    rho += vw * p.rho[b];
-                    pr += vw * p.press[b];
-                    vel += p.vel[b] * vw;
-                });
-                if w_sum > 0.0 {
-                    (w_sum, rho / w_sum, pr / w_sum, vel * (1.0 / w_sum))
-                } else {
-                    (0.0, 0.0, 0.0, D::V::ZERO)
-                }
-            })
+            .map(|i| self.shepard(D::V::from_slice(&points[i * D::DIM..(i + 1) * D::DIM])))
             .collect();
         let mut out = Interpolated::default();
         for (w, rho, pr, v) in rows {
@@ -591,5 +804,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             out.velocity.extend_from_slice(v.as_slice());
         }
         Ok(out)
+    }
+    fn gauges(&self) -> &[GaugeRecord] {
+        &self.gauges
     }
 }

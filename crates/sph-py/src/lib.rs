@@ -204,6 +204,40 @@ impl Simulation {
         Ok(d)
     }
 
+    /// Gauge records: a list of dicts with `name`, `type`, `t` (n,) and, by type,
+    /// `z` (n,) for elevation and run-up [m, NaN when dry], or `velocity` (n, points, dim),
+    /// `kernel_sum` (n, points) and `points` (points, dim) for velocity probes and windows
+    /// (windows also give `shape`, the grid counts per axis, x fastest).
+    fn gauges<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let dim = self.inner.dim();
+        let mut out = Vec::new();
+        for g in self.inner.gauges() {
+            let d = PyDict::new(py);
+            d.set_item("name", &g.name)?;
+            d.set_item("type", g.kind)?;
+            let n = g.t.len();
+            d.set_item("t", PyArray1::from_slice(py, &g.t))?;
+            if g.points.is_empty() {
+                d.set_item("z", PyArray1::from_slice(py, &g.values))?;
+            } else {
+                let m = g.points.len() / dim;
+                let (mut vel, mut ksum) = (Vec::with_capacity(n * m * dim), Vec::with_capacity(n * m));
+                for row in g.values.chunks_exact(dim + 1) {
+                    vel.extend_from_slice(&row[..dim]);
+                    ksum.push(row[dim]);
+                }
+                d.set_item("velocity", PyArray1::from_vec(py, vel).reshape([n, m, dim])?)?;
+                d.set_item("kernel_sum", PyArray1::from_vec(py, ksum).reshape([n, m])?)?;
+                d.set_item("points", PyArray1::from_slice(py, &g.points).reshape([m, dim])?)?;
+                if !g.shape.is_empty() {
+                    d.set_item("shape", g.shape.clone())?;
+                }
+            }
+            out.push(d);
+        }
+        Ok(out)
+    }
+
     fn __repr__(&self) -> String {
         let p = self.inner.params();
         format!(

@@ -1,0 +1,125 @@
+//! Wave-maker paddles, damping zone and gauges on small flumes.
+
+use sph_core::{Scene, Simulation};
+
+fn flume(paddle: &str, gauges: &str) -> Box<dyn Simulation> {
+    let json = format!(
+        r#"{{"dim": 2, "dp": 0.02, "coefh": 1.2, "tank": {{"min": [-0.1, 0], "max": [2.0, 0.4]}},
+            "fluid": [{{"min": [0, 0], "max": [2.0, 0.2]}}],
+            "viscosity": {{"model": "artificial", "alpha": 0.01}},
+            "paddle": {paddle}, "gauges": [{gauges}]}}"#
+    );
+    sph_core::build(Scene::from_json(&json).expect("valid scene")).expect("built")
+}
+
+/// (x, z, u, w) of the moving particles.
+fn paddle_particles(sim: &dyn Simulation) -> Vec<[f64; 4]> {
+    let (pos, vel, kinds) = (sim.positions(), sim.velocities(), sim.kinds());
+    (0..sim.n_particles())
+        .filter(|&i| kinds[i] == 2)
+        .map(|i| [pos[2 * i], pos[2 * i + 1], vel[2 * i], vel[2 * i + 1]])
+        .collect()
+}
+
+#[test]
+fn piston_follows_its_table_and_pushes_water() {
+    let law = r#"{"kind": "piston", "x": 0.0, "law": {"type": "table", "t": [0, 0.5, 10], "x": [0, 0.05, 0.05]}}"#;
+    let mut sim = flume(law, "");
+    let rest = paddle_particles(sim.as_ref());
+    assert!(!rest.is_empty());
+    assert!(rest.iter().all(|p| p[0] < 0.0 && p[0] > -0.1), "plate behind the face");
+    sim.run_until(0.25).expect("stable");
+    let t = sim.time();
+    let moved = paddle_particles(sim.as_ref());
+    let xmax_rest = rest.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
+    let xmax = moved.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
+    assert!((xmax - xmax_rest - 0.1 * t).abs() < 1e-12, "displacement {}", xmax - xmax_rest);
+    assert!(moved.iter().all(|p| (p[2] - 0.1).abs() < 1e-12 && p[3] == 0.0));
+    // water next to the paddle moves with it
+    let (pos, vel, kinds) = (sim.positions(), sim.velocities(), sim.kinds());
+    let near: Vec<f64> =
+        (0..sim.n_particles()).filter(|&i| kinds[i] == 0 && pos[2 * i] < 0.1).map(|i| vel[2 * i]).collect();
+    let mean = near.iter().sum::<f64>() / near.len() as f64;
+    assert!(mean > 0.05, "mean u near the paddle {mean}");
+}
+
+#[test]
+fn flap_rotates_about_its_hinge() {
+    let law = r#"{"kind": "flap", "x": 0.0, "hinge_z": 0.05,
+                  "law": {"type": "harmonic", "components": [[0.02, 6.0, 0.0]], "ramp_duration": 0}}"#;
+    let mut sim = flume(law, "");
+    sim.step(50).expect("stable");
+    let t = sim.time();
+    // the face point at the still-water level (0.2 m) has moved by X(t) horizontally up to the arc
+    let x_swl = 0.02 * (6.0 * t).sin();
+    let theta = (x_swl / 0.15f64).atan();
+    for p in paddle_particles(sim.as_ref()) {
+        assert!(p[1] >= 0.05 - 0.02, "flap particles sit above the hinge");
+        let (rx, rz) = (p[0], p[1] - 0.05);
+        let r0 = (rx * rx + rz * rz).sqrt();
+        assert!(r0 > 0.0);
+        // angular velocity times radius is the speed
+        let speed = (p[2] * p[2] + p[3] * p[3]).sqrt();
+        let omega = 0.02 * 6.0 * (6.0 * t).cos() * 0.15 / (0.15 * 0.15 + x_swl * x_swl);
+        assert!((speed - omega.abs() * r0).abs() < 1e-9);
+    }
+    // below the hinge the plate is a fixed wall
+    let kinds = sim.kinds();
+    let pos = sim.positions();
+    assert!((0..sim.n_particles()).any(|i| kinds[i] == 1 && pos[2 * i] < 0.0 && pos[2 * i + 1] < 0.05));
+    assert!(theta.abs() < 0.2);
+}
+
+#[test]
+fn gauges_read_still_water() {
+    let paddle = r#"{"kind": "piston", "x": 0.0, "law": {"type": "harmonic", "components": []}}"#;
+    let gauges = r#"{"type": "elevation", "name": "k", "position": [1.0, 0], "interval": 0.01},
+                    {"type": "elevation", "name": "p", "position": [1.0, 0], "method": "particle", "interval": 0.01},
+                    {"type": "velocity", "name": "u", "points": [[1.0, 0.1], [1.0, 0.35]], "interval": 0.02},
+                    {"type": "window", "name": "w", "min": [0.5, 0.05], "max": [0.7, 0.15], "n": [3, 2], "interval": 0.05},
+                    {"type": "runup", "name": "r", "start": [1.5, 0.03], "end": [1.9, 0.39], "interval": 0.01}"#;
+    let mut sim = flume(paddle, gauges);
+    sim.run_until(0.1).expect("stable");
+    let g = sim.gauges();
+    assert_eq!(g.len(), 5);
+    let (k, p, u, w, r) = (&g[0], &g[1], &g[2], &g[3], &g[4]);
+    assert_eq!(k.t[0], 0.0);
+    assert!(k.t.len() >= 10 && k.t.len() <= 12, "{} samples", k.t.len());
+    assert!(k.t.windows(2).all(|s| s[1] - s[0] >= 0.01 - 1e-3));
+    for &z in &k.values {
+        assert!((z - 0.2).abs() < 0.25 * 0.02, "kernel surface {z}");
+    }
+    for &z in &p.values {
+        assert!((z - 0.2).abs() < 0.25 * 0.02, "particle surface {z}");
+    }
+    assert_eq!(u.width, 6);
+    let first = &u.values[..6];
+    assert!(first[2] > 0.9 && first[5] == 0.0, "wet point then dry point: {first:?}");
+    assert_eq!(w.shape, vec![3, 2]);
+    assert_eq!(w.points.len(), 12);
+    // the run-up line crosses the still surface at z = 0.2
+    assert!(r.values.iter().all(|z| (z - 0.2).abs() < 0.02), "{:?}", r.values);
+}
+
+#[test]
+fn bad_flume_fields_are_named() {
+    let cases = [
+        (r#"{"kind": "piston", "x": 0.0, "law": {"type": "table", "t": [0, 1], "x": [0, 1, 2]}}"#, "paddle.law.x"),
+        (r#"{"kind": "piston", "x": -0.05, "law": {"type": "harmonic", "components": []}}"#, "paddle.x"),
+        (r#"{"kind": "piston", "x": 0.5, "law": {"type": "harmonic", "components": []}}"#, "fluid[0]"),
+    ];
+    for (paddle, field) in cases {
+        let json = format!(
+            r#"{{"dim": 2, "dp": 0.02, "tank": {{"min": [-0.1, 0], "max": [2.0, 0.4]}},
+                "fluid": [{{"min": [0, 0], "max": [2.0, 0.2]}}], "paddle": {paddle}}}"#
+        );
+        match Scene::from_json(&json) {
+            Err(sph_core::Error::InvalidScene { field: f, .. }) => assert_eq!(f, field),
+            other => panic!("{field}: {other:?}"),
+        }
+    }
+    let json = r#"{"dim": 2, "dp": 0.02, "tank": {"min": [0, 0], "max": [2.0, 0.4]},
+        "fluid": [{"min": [0, 0], "max": [2.0, 0.2]}],
+        "gauges": [{"type": "elevation", "name": "far", "position": [3.0, 0], "interval": 0.1}]}"#;
+    assert!(matches!(Scene::from_json(json), Err(sph_core::Error::InvalidScene { field, .. }) if field == "gauges[0].position"));
+}

@@ -1,0 +1,1145 @@
+"""Wave theory for the numerical wave flume: dispersion, wave-makers, breaking, run-up, spectra.
+
+Every function is vectorised with NumPy: scalars or arrays in (broadcast together), the broadcast
+shape out (a NumPy scalar for scalar input). SI units throughout: metres, seconds, radians,
+hertz. ``g`` is the gravitational acceleration [m/s^2]. Bad input (NaN, infinite, a depth,
+height or period <= 0, an unknown option) raises :class:`ValueError` naming the argument.
+
+Conventions (the same as ``shared/validation/wave_theory/FORMULAS.md``):
+
+- ``d`` is the still-water depth [m], ``H`` the wave height (crest to trough) [m], ``T`` the
+  period [s], ``omega = 2 pi / T`` [rad/s], ``k = 2 pi / L`` the wavenumber [rad/m].
+- Progressive wave travelling towards +x: ``eta = (H/2) cos(k x - omega t - delta) + ...``.
+- Paddle displacement (piston, or a flap at the still-water level): ``X(t) = (S/2) sin(omega t +
+  delta) + X2 sin(2 omega t + 2 delta)``, ``S`` the peak-to-peak stroke [m]. With this sign the
+  paddle moves forward fastest when the crest leaves it (``eta(0, t) = (H/2) cos(omega t +
+  delta)``).
+- ``slope`` is ``tan(beta)`` [-], rise over run (1/15 for a 1:15 beach).
+
+Sources cited below as "FORMULAS §n" are sections of
+``shared/validation/wave_theory/FORMULAS.md``; "seed 001" is Roselli et al. (the project's
+``shared/seeds/001_*``), "seed 000" the project's wave-maker reference sheet.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "G",
+    "KINEMATIC_BREAKING_RATIO",
+    "MADSEN_URSELL_LIMIT",
+    "MCCOWAN_BREAKING_RATIO",
+    "MICHE_COEFFICIENT",
+    "IrregularPaddleMotion",
+    "RegularPaddleMotion",
+    "WaveValidityWarning",
+    "breaker_type",
+    "celerity",
+    "check_wave",
+    "chue_runup",
+    "deep_water_wavelength",
+    "flap_height_to_stroke",
+    "flap_motion",
+    "flap_stroke",
+    "group_velocity",
+    "hsu_runup",
+    "hughes_runup",
+    "hunt_runup",
+    "irregular_paddle_motion",
+    "iribarren",
+    "jonswap_spectrum",
+    "kinematic_breaking",
+    "linear_momentum_flux_parameter",
+    "mccowan_breaking",
+    "miche_breaking",
+    "miche_height_limit",
+    "pierson_moskowitz_spectrum",
+    "piston_height_to_stroke",
+    "piston_motion",
+    "piston_stroke",
+    "regular_paddle_motion",
+    "schuttrumpf_runup",
+    "solitary_celerity",
+    "solitary_piston_duration",
+    "solitary_piston_motion",
+    "solitary_piston_stroke",
+    "solitary_wave_elevation",
+    "stokes2_elevation",
+    "stokes2_second_harmonic_amplitude",
+    "synolakis_runup",
+    "ursell_number",
+    "warn_if_invalid_wave",
+    "wavelength",
+    "wavenumber",
+    "wavenumber_from_omega",
+]
+
+G = 9.81
+"""Default gravitational acceleration [m/s^2]."""
+
+MCCOWAN_BREAKING_RATIO = 0.78
+"""Depth-limited breaking, McCowan (1894): a wave breaks when H/d > 0.78 (seed 000)."""
+
+MICHE_COEFFICIENT = 0.142
+"""Steepness-limited breaking, Miche (1944): H/L > 0.142 tanh(kd) (seed 000: 1/7 ~ 0.142)."""
+
+KINEMATIC_BREAKING_RATIO = 0.85
+"""Kinematic breaking onset: crest particle speed u > 0.85 c (seed 000)."""
+
+MADSEN_URSELL_LIMIT = 8.0 * math.pi**2 / 3.0
+"""Ursell number ``H L^2 / d^3`` up to which Madsen's second-order generation is used,
+8 pi^2 / 3 ~ 26.3 (FORMULAS §3, as in the DualSPHysics-type script it cross-checks)."""
+
+FloatArray = npt.NDArray[np.float64]
+FloatLike = FloatArray | np.float64
+Paddle = Literal["piston", "flap"]
+RampKind = Literal["linear", "tanh"]
+
+_FLOAT_EPS = float(np.finfo(np.float64).eps)
+
+
+class WaveValidityWarning(UserWarning):
+    """A requested wave is outside the validity of the theory or of the paddle generating it."""
+
+
+# ------------------------------------------------------------------------------------------------
+# Input checks
+
+
+def _finite(name: str, value: npt.ArrayLike) -> FloatArray:
+    """``value`` as a float array; ValueError naming ``name`` if it is not numeric or not finite."""
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{name}: must be a number or an array of numbers, got {value!r}"
+        ) from None
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name}: must be finite (no NaN or inf), got {value!r}")
+    return arr
+
+
+def _positive(name: str, value: npt.ArrayLike) -> FloatArray:
+    """``value`` as a float array; ValueError naming ``name`` unless every entry is finite > 0."""
+    arr = _finite(name, value)
+    if not np.all(arr > 0.0):
+        raise ValueError(f"{name}: must be > 0, got {value!r}")
+    return arr
+
+
+def _nonnegative(name: str, value: npt.ArrayLike) -> FloatArray:
+    """``value`` as a float array; ValueError naming ``name`` unless every entry is finite >= 0."""
+    arr = _finite(name, value)
+    if not np.all(arr >= 0.0):
+        raise ValueError(f"{name}: must be >= 0, got {value!r}")
+    return arr
+
+
+def _choice(name: str, value: str, allowed: tuple[str, ...]) -> str:
+    """``value`` if it is one of ``allowed``; otherwise ValueError naming ``name``."""
+    if value not in allowed:
+        raise ValueError(f"{name}: must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+    return value
+
+
+def _out(arr: FloatArray) -> FloatArray:
+    """Return 0-d results as NumPy scalars and arrays unchanged."""
+    return arr[()]
+
+
+# ------------------------------------------------------------------------------------------------
+# Overflow-free hyperbolic helpers (kd may be large in deep water)
+
+
+def _sech(x: FloatLike) -> FloatArray:
+    """sech(x) for x >= 0 without overflow."""
+    e = np.exp(-x)
+    return 2.0 * e / (1.0 + e * e)
+
+
+def _two_x_over_sinh_two_x(x: FloatLike) -> FloatArray:
+    """``2x / sinh(2x)`` for x > 0 without overflow: ``4 x e^(-2x) / (1 - e^(-4x))``."""
+    return 4.0 * x * np.exp(-2.0 * x) / -np.expm1(-4.0 * x)
+
+
+def _csch_squared(x: FloatLike) -> FloatArray:
+    """``1 / sinh(x)^2`` for x > 0 without overflow: ``4 e^(-2x) / (1 - e^(-2x))^2``."""
+    return 4.0 * np.exp(-2.0 * x) / np.expm1(-2.0 * x) ** 2
+
+
+# ------------------------------------------------------------------------------------------------
+# Linear dispersion
+
+
+def wavenumber_from_omega(omega: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Wavenumber k [rad/m] solving the linear dispersion relation ``omega^2 = g k tanh(k d)``.
+
+    FORMULAS §1 (Dean & Dalrymple 1991, ch. 3). The starting value is the explicit approximation
+    of Fenton & McKee (1990), ``k d = y / tanh(y^(3/4))^(2/3)`` with ``y = omega^2 d / g``
+    (FORMULAS §1, quoted there from memory; it is only a starting value here). Newton's method on
+    ``f(x) = x tanh(x) - y``, ``x = k d``, then converges quadratically; it stops once the step is
+    below 2 ulp of x, so the relative residual of the dispersion relation is at machine precision
+    (about 1e-15) from kd = 1e-3 to kd > 50.
+
+    Args:
+        omega: angular frequency [rad/s], > 0.
+        depth: still-water depth d [m], > 0.
+        g: gravitational acceleration [m/s^2].
+    """
+    w = _positive("omega", omega)
+    d = _positive("depth", depth)
+    g_ = float(_positive("g", g))
+    y = w * w * np.broadcast_to(d, np.broadcast_shapes(w.shape, d.shape)) / g_
+    x = y / np.tanh(y**0.75) ** (2.0 / 3.0)
+    for _ in range(50):
+        th = np.tanh(x)
+        step = (x * th - y) / (th + x * (1.0 - th * th))
+        x = x - step
+        if np.all(np.abs(step) <= 2.0 * _FLOAT_EPS * x):
+            break
+    return _out(x / d)
+
+
+def wavenumber(period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Wavenumber k [rad/m] of a linear wave of period ``period`` [s] in depth ``depth`` [m].
+
+    See :func:`wavenumber_from_omega` (FORMULAS §1).
+    """
+    T = _positive("period", period)
+    return wavenumber_from_omega(2.0 * np.pi / T, depth, g)
+
+
+def wavelength(period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Linear wavelength L = 2 pi / k [m] (FORMULAS §1)."""
+    return _out(2.0 * np.pi / np.asarray(wavenumber(period, depth, g)))
+
+
+def deep_water_wavelength(period: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Deep-water wavelength ``L0 = g T^2 / (2 pi)`` [m] (seed 001, below Eq. 2)."""
+    T = _positive("period", period)
+    return _out(float(_positive("g", g)) * T * T / (2.0 * np.pi))
+
+
+def celerity(period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Phase speed ``c = omega / k = L / T`` [m/s] (FORMULAS §1 and §4)."""
+    T = _positive("period", period)
+    k = np.asarray(wavenumber(T, depth, g))
+    return _out(2.0 * np.pi / (T * k))
+
+
+def group_velocity(period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Group velocity ``c_g = (c / 2) (1 + 2 k d / sinh(2 k d))`` [m/s].
+
+    Dean & Dalrymple (1991), ch. 4 (derivative of the dispersion relation of FORMULAS §1).
+    """
+    T = _positive("period", period)
+    d = _positive("depth", depth)
+    k = np.asarray(wavenumber(T, d, g))
+    c = 2.0 * np.pi / (T * k)
+    return _out(0.5 * c * (1.0 + _two_x_over_sinh_two_x(k * d)))
+
+
+def ursell_number(
+    height: npt.ArrayLike, period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G
+) -> FloatArray:
+    """Ursell number ``U = H L^2 / d^3`` [-] with the linear wavelength L (FORMULAS §3)."""
+    H = _positive("height", height)
+    d = _positive("depth", depth)
+    L = np.asarray(wavelength(period, d, g))
+    return _out(H * L * L / d**3)
+
+
+# ------------------------------------------------------------------------------------------------
+# Biesel transfer functions and regular paddle motion
+
+
+def piston_height_to_stroke(k: npt.ArrayLike, depth: npt.ArrayLike) -> FloatArray:
+    """Piston transfer function ``H/S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd)`` [-].
+
+    Biesel & Suquet (1951); FORMULAS §2. S is the peak-to-peak stroke. Evaluated in the
+    equivalent overflow-free form ``2 tanh(kd) / (1 + 2kd / sinh 2kd)``. Limits: kd in shallow
+    water, 2 in deep water.
+
+    Args:
+        k: wavenumber [rad/m], > 0.
+        depth: still-water depth d [m], > 0.
+    """
+    kd = _positive("k", k) * _positive("depth", depth)
+    return _out(2.0 * np.tanh(kd) / (1.0 + _two_x_over_sinh_two_x(kd)))
+
+
+def flap_height_to_stroke(k: npt.ArrayLike, depth: npt.ArrayLike) -> FloatArray:
+    """Bottom-hinged flap: ``H/S = 4 (sinh kd / kd)(kd sinh kd - cosh kd + 1)/(sinh 2kd + 2kd)``.
+
+    Biesel & Suquet (1951); FORMULAS §2 (written there from memory of Dean & Dalrymple 1991 and
+    checked through its limits). S is the stroke at the still-water level. Evaluated as
+    ``2 (kd tanh kd - (1 - sech kd)) / (kd (1 + 2kd / sinh 2kd))``, with
+    ``1 - sech x = 2 sinh^2(x/2) / cosh x`` for small x to avoid cancellation. Limits: kd/2 in
+    shallow water, 2 in deep water.
+
+    Args:
+        k: wavenumber [rad/m], > 0.
+        depth: still-water depth d [m], > 0 (the hinge is on the bed).
+    """
+    kd = _positive("k", k) * _positive("depth", depth)
+    small = np.minimum(kd, 1.0)
+    one_minus_sech = np.where(
+        kd < 1.0, 2.0 * np.sinh(0.5 * small) ** 2 / np.cosh(small), 1.0 - _sech(kd)
+    )
+    ratio = 2.0 * (kd * np.tanh(kd) - one_minus_sech) / (kd * (1.0 + _two_x_over_sinh_two_x(kd)))
+    return _out(ratio)
+
+
+def piston_stroke(
+    height: npt.ArrayLike, period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G
+) -> FloatArray:
+    """Peak-to-peak piston stroke ``S = H / (H/S)`` [m] for a first-order wave (FORMULAS §2)."""
+    H = _positive("height", height)
+    k = wavenumber(period, depth, g)
+    return _out(H / np.asarray(piston_height_to_stroke(k, depth)))
+
+
+def flap_stroke(
+    height: npt.ArrayLike, period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G
+) -> FloatArray:
+    """Peak-to-peak flap stroke at the still-water level ``S = H / (H/S)`` [m] (FORMULAS §2)."""
+    H = _positive("height", height)
+    k = wavenumber(period, depth, g)
+    return _out(H / np.asarray(flap_height_to_stroke(k, depth)))
+
+
+def _madsen_second_order_amplitude(height: FloatLike, kd: FloatLike, depth: FloatLike) -> FloatLike:
+    """``X2 = H^2/(32 d) (3 cosh kd / sinh^3 kd - 2 / m1)`` [m], m1 the piston H/S (FORMULAS §3)."""
+    m1 = 2.0 * np.tanh(kd) / (1.0 + _two_x_over_sinh_two_x(kd))
+    cosh_over_sinh3 = _csch_squared(kd) / np.tanh(kd)
+    return height * height / (32.0 * depth) * (3.0 * cosh_over_sinh3 - 2.0 / m1)
+
+
+def _ramp(t: FloatArray, ramp_time: float, kind: str) -> tuple[FloatArray, FloatArray]:
+    """Ramp factor r(t) and its time derivative [1/s] for a ramp of duration ``ramp_time`` [s].
+
+    ``linear``: r = min(1, t / ramp_time) (seed 000). ``tanh``: r = tanh(4 t / ramp_time), which
+    reaches 0.9993 at t = ramp_time and has no kink. Before t = 0, r = 0. ``ramp_time = 0``
+    means no ramp (r = 1 for t >= 0).
+    """
+    tc = np.maximum(t, 0.0)
+    if ramp_time == 0.0:
+        return np.where(t >= 0.0, 1.0, 0.0), np.zeros_like(tc)
+    if kind == "linear":
+        rising = (t >= 0.0) & (t < ramp_time)
+        return np.minimum(tc / ramp_time, 1.0), np.where(rising, 1.0 / ramp_time, 0.0)
+    th = np.tanh(4.0 * tc / ramp_time)
+    return th, np.where(t >= 0.0, 4.0 / ramp_time * (1.0 - th * th), 0.0)
+
+
+@dataclass(frozen=True)
+class RegularPaddleMotion:
+    """Coefficients of a regular-wave paddle motion law (what the core evaluates each step).
+
+    The law, for t >= 0 (r(t) the ramp of :meth:`motion`)::
+
+        X(t) = r(t) [ (S/2) sin(omega t + phase) + X2 sin(2 omega t + 2 phase) ]
+        U(t) = dX/dt (exact derivative, ramp included)
+
+    For a flap, X is the displacement at the still-water level; the rotation about the hinge on
+    the bed is ``atan(X / d)``.
+
+    Attributes:
+        paddle: ``"piston"`` or ``"flap"``.
+        height: target wave height H [m].
+        period: wave period T [s].
+        depth: still-water depth at the paddle d [m].
+        omega: angular frequency 2 pi / T [rad/s].
+        wavenumber: linear wavenumber k [rad/m].
+        stroke: first-order peak-to-peak stroke S = H / (H/S) [m] (Biesel, FORMULAS §2).
+        second_order_amplitude: Madsen (1971) second-harmonic amplitude X2 [m] (signed; 0 for
+            first-order generation). FORMULAS §3.
+        phase: phase ``delta`` [rad].
+    """
+
+    paddle: Paddle
+    height: float
+    period: float
+    depth: float
+    omega: float
+    wavenumber: float
+    stroke: float
+    second_order_amplitude: float
+    phase: float
+
+    def motion(
+        self, t: npt.ArrayLike, ramp_periods: float = 2.0, ramp: RampKind = "linear"
+    ) -> tuple[FloatArray, FloatArray]:
+        """Paddle displacement X [m] and velocity U = dX/dt [m/s] at times ``t`` [s].
+
+        Args:
+            t: times [s]; the motion starts at t = 0 (X = 0 before).
+            ramp_periods: ramp duration n in periods (ramp over n T); 0 for none.
+            ramp: ``"linear"``, r = min(1, t / (n T)) (seed 000), or ``"tanh"``,
+                r = tanh(4 t / (n T)), smooth and at 0.9993 after n T.
+        """
+        tt = _finite("t", t)
+        n = float(_nonnegative("ramp_periods", ramp_periods))
+        _choice("ramp", ramp, ("linear", "tanh"))
+        r, dr = _ramp(tt, n * self.period, ramp)
+        w, a1, a2, ph = self.omega, 0.5 * self.stroke, self.second_order_amplitude, self.phase
+        base = a1 * np.sin(w * tt + ph) + a2 * np.sin(2.0 * w * tt + 2.0 * ph)
+        base_rate = a1 * w * np.cos(w * tt + ph) + 2.0 * w * a2 * np.cos(2.0 * w * tt + 2.0 * ph)
+        return _out(r * base), _out(dr * base + r * base_rate)
+
+
+def regular_paddle_motion(
+    height: float,
+    period: float,
+    depth: float,
+    paddle: Paddle = "piston",
+    order: int = 1,
+    phase: float = 0.0,
+    g: float = G,
+) -> RegularPaddleMotion:
+    """Coefficients of the paddle law generating a regular wave of height H and period T.
+
+    First order (Biesel, FORMULAS §2): ``X = (S/2) sin(omega t + phase)`` with S = H / (H/S).
+    Second order (piston only; Madsen 1971, as used in DualSPHysics by Altomare et al. 2017,
+    FORMULAS §3): adds ``X2 sin(2 omega t + 2 phase)`` with
+    ``X2 = H^2/(32 d) (3 cosh kd / sinh^3 kd - 2/m1)``, ``m1 = H/S`` of the piston. X2 > 0 in
+    shallow water and < 0 in deep water; the sign convention is FORMULAS §3's (the same
+    ``sin(2 omega t + 2 delta)`` term as the DualSPHysics-type script it cross-checks).
+
+    Args:
+        height: wave height H [m].
+        period: wave period T [s].
+        depth: still-water depth at the paddle d [m].
+        paddle: ``"piston"`` or ``"flap"`` (bottom-hinged).
+        order: 1 or 2 (2 only for a piston).
+        phase: phase ``delta`` [rad].
+        g: gravitational acceleration [m/s^2].
+    """
+    H = float(_positive("height", height))
+    T = float(_positive("period", period))
+    d = float(_positive("depth", depth))
+    ph = float(_finite("phase", phase))
+    _choice("paddle", paddle, ("piston", "flap"))
+    if order not in (1, 2):
+        raise ValueError(f"order: must be 1 or 2, got {order!r}")
+    if order == 2 and paddle != "piston":
+        raise ValueError("order: second-order (Madsen 1971) generation is for a piston only")
+    k = float(wavenumber(T, d, g))
+    transfer = piston_height_to_stroke if paddle == "piston" else flap_height_to_stroke
+    stroke = H / float(transfer(k, d))
+    x2 = float(_madsen_second_order_amplitude(np.float64(H), np.float64(k * d), np.float64(d)))
+    return RegularPaddleMotion(
+        paddle=paddle,
+        height=H,
+        period=T,
+        depth=d,
+        omega=2.0 * math.pi / T,
+        wavenumber=k,
+        stroke=stroke,
+        second_order_amplitude=x2 if order == 2 else 0.0,
+        phase=ph,
+    )
+
+
+def piston_motion(
+    t: npt.ArrayLike,
+    height: float,
+    period: float,
+    depth: float,
+    order: int = 1,
+    ramp_periods: float = 2.0,
+    phase: float = 0.0,
+    ramp: RampKind = "linear",
+    g: float = G,
+) -> tuple[FloatArray, FloatArray]:
+    """Piston displacement X [m] and velocity dX/dt [m/s] at times ``t`` [s], regular wave.
+
+    ``X = r(t) [(S/2) sin(omega t + phase) + X2 sin(2 omega t + 2 phase)]``, X2 = 0 for
+    ``order=1`` and Madsen's (1971) correction for ``order=2`` (FORMULAS §2-3); see
+    :func:`regular_paddle_motion` and :meth:`RegularPaddleMotion.motion` for the ramp r(t).
+    """
+    law = regular_paddle_motion(height, period, depth, "piston", order, phase, g)
+    return law.motion(t, ramp_periods, ramp)
+
+
+def flap_motion(
+    t: npt.ArrayLike,
+    height: float,
+    period: float,
+    depth: float,
+    ramp_periods: float = 2.0,
+    phase: float = 0.0,
+    ramp: RampKind = "linear",
+    g: float = G,
+) -> tuple[FloatArray, FloatArray]:
+    """Flap displacement at the still-water level X [m] and its rate [m/s], first order.
+
+    ``X = r(t) (S/2) sin(omega t + phase)`` with the flap transfer function (FORMULAS §2).
+    """
+    law = regular_paddle_motion(height, period, depth, "flap", 1, phase, g)
+    return law.motion(t, ramp_periods, ramp)
+
+
+# ------------------------------------------------------------------------------------------------
+# Stokes second order
+
+
+def stokes2_second_harmonic_amplitude(
+    height: npt.ArrayLike, k: npt.ArrayLike, depth: npt.ArrayLike
+) -> FloatArray:
+    """Bound second-harmonic amplitude ``(k H^2 / 16)(3 coth^3 kd - coth kd)`` [m].
+
+    Stokes second order, FORMULAS §4 (Dean & Dalrymple 1991, ch. 11), equal to
+    ``(pi H^2 / 8L) cosh kd (2 + cosh 2kd) / sinh^3 kd``. Deep-water limit k H^2 / 8.
+    """
+    H = _positive("height", height)
+    kk = _positive("k", k)
+    coth = 1.0 / np.tanh(kk * _positive("depth", depth))
+    return _out(kk * H * H / 16.0 * (3.0 * coth**3 - coth))
+
+
+def stokes2_elevation(
+    x: npt.ArrayLike,
+    t: npt.ArrayLike,
+    height: float,
+    period: float,
+    depth: float,
+    phase: float = 0.0,
+    g: float = G,
+) -> FloatArray:
+    """Stokes second-order surface elevation eta(x, t) [m] of a progressive wave (towards +x).
+
+    ``eta = (H/2) cos(theta) + a2 cos(2 theta)``, ``theta = k x - omega t - phase``, a2 from
+    :func:`stokes2_second_harmonic_amplitude` (FORMULAS §4). At x = 0 the first harmonic is
+    ``(H/2) cos(omega t + phase)``, the wave a paddle with the same ``phase`` makes.
+
+    Args:
+        x: position [m]; t: time [s] (broadcast together).
+        height: wave height H [m] (of the first harmonic); period: T [s]; depth: d [m].
+        phase: phase ``delta`` [rad].
+    """
+    xx = _finite("x", x)
+    tt = _finite("t", t)
+    H = float(_positive("height", height))
+    k = float(wavenumber(period, depth, g))
+    w = 2.0 * math.pi / float(period)
+    theta = k * xx - w * tt - float(_finite("phase", phase))
+    a2 = float(stokes2_second_harmonic_amplitude(H, k, depth))
+    return _out(0.5 * H * np.cos(theta) + a2 * np.cos(2.0 * theta))
+
+
+# ------------------------------------------------------------------------------------------------
+# Breaking limits, Iribarren number, breaker type
+
+
+def mccowan_breaking(height: npt.ArrayLike, depth: npt.ArrayLike) -> npt.NDArray[np.bool_]:
+    """True where ``H / d > 0.78`` (McCowan 1894; seed 000, depth-limited breaking)."""
+    return (_nonnegative("height", height) / _positive("depth", depth) > MCCOWAN_BREAKING_RATIO)[()]
+
+
+def miche_height_limit(period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Steepness-limited height ``H_max = 0.142 L tanh(k d)`` [m] (Miche 1944; seed 000)."""
+    d = _positive("depth", depth)
+    k = np.asarray(wavenumber(period, d, g))
+    return _out(MICHE_COEFFICIENT * 2.0 * np.pi / k * np.tanh(k * d))
+
+
+def miche_breaking(
+    height: npt.ArrayLike, period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G
+) -> npt.NDArray[np.bool_]:
+    """True where ``H / L > 0.142 tanh(k d)`` (Miche 1944; seed 000)."""
+    H = _nonnegative("height", height)
+    return (H > np.asarray(miche_height_limit(period, depth, g)))[()]
+
+
+def kinematic_breaking(
+    crest_speed: npt.ArrayLike, celerity: npt.ArrayLike
+) -> npt.NDArray[np.bool_]:
+    """True where the crest particle speed exceeds 0.85 times the wave celerity (seed 000).
+
+    Args:
+        crest_speed: horizontal particle speed at the crest u [m/s].
+        celerity: local wave celerity c [m/s], > 0.
+    """
+    u = _finite("crest_speed", crest_speed)
+    return (u > KINEMATIC_BREAKING_RATIO * _positive("celerity", celerity))[()]
+
+
+def iribarren(slope: npt.ArrayLike, height: npt.ArrayLike, l0: npt.ArrayLike) -> FloatArray:
+    """Iribarren number (surf similarity) ``xi = tan(beta) / sqrt(H / L0)`` [-].
+
+    Seed 001 Eq. 2 (Iribarren 1949; Battjes 1974). ``L0 = g T^2 / (2 pi)`` is the deep-water
+    wavelength (:func:`deep_water_wavelength`). Which H: for :func:`breaker_type` the height at
+    the break point (Battjes 1974 via the Coastal Wiki "Surf similarity parameter" page, which
+    gives the thresholds of seed 001 Table 1 for H and L at the break point, L = g T^2 / 2 pi);
+    for the run-up formulas of seed 001 the finite-depth height near the toe of the slope.
+
+    Args:
+        slope: tan(beta) [-], > 0.
+        height: wave height H [m], > 0.
+        l0: deep-water wavelength L0 [m], > 0.
+    """
+    s = _positive("slope", slope)
+    return _out(s / np.sqrt(_positive("height", height) / _positive("l0", l0)))
+
+
+def breaker_type(xi: npt.ArrayLike) -> str | npt.NDArray[np.str_]:
+    """Breaker type from the Iribarren number (seed 001 Table 1; seed 000).
+
+    ``xi < 0.4``: ``"spilling"``; ``0.4 <= xi <= 2.0``: ``"plunging"``; ``xi > 2.0``:
+    ``"collapsing/surging"`` (seed 001's table prints "> 0.2" for surging, a typo for 2.0 as
+    seed 000 and Battjes 1974 give). Compute xi with the breaking wave height and the deep-water
+    wavelength (see :func:`iribarren`).
+
+    Returns:
+        A string for a scalar ``xi``, else an array of strings of ``xi``'s shape.
+    """
+    x = _nonnegative("xi", xi)
+    kinds = np.where(x < 0.4, "spilling", np.where(x <= 2.0, "plunging", "collapsing/surging"))
+    return str(kinds) if kinds.ndim == 0 else kinds
+
+
+# ------------------------------------------------------------------------------------------------
+# Run-up formulas of seed 001 (Roselli et al., section 1)
+
+
+def hunt_runup(xi: npt.ArrayLike) -> FloatArray:
+    """Hunt (1959): relative run-up ``R / H = xi`` [-] (seed 001 Eq. 1).
+
+    R is the maximum run-up above the still-water level [m], xi from :func:`iribarren` with the
+    wave height near the toe and L0. Seed 001: suitable for xi < 2.5, less accurate above 2.
+    """
+    return _out(np.array(_nonnegative("xi", xi)))
+
+
+def schuttrumpf_runup(xi: npt.ArrayLike, a: float = 2.25, b: float = 0.5) -> FloatArray:
+    """Schuttrumpf (2001): ``R / H = a tanh(b xi)`` [-], a = 2.25, b = 0.5 (seed 001 Eq. 3).
+
+    For breaking and non-breaking waves; xi as in :func:`hunt_runup`.
+    """
+    x = _nonnegative("xi", xi)
+    return _out(float(_positive("a", a)) * np.tanh(float(_positive("b", b)) * x))
+
+
+def chue_runup(height: npt.ArrayLike, l0: npt.ArrayLike, slope: npt.ArrayLike) -> FloatArray:
+    """Chue (1980): ``R/H = 1.8 (1 - 3.1 H/L0) xi0 (1 - exp(-sqrt(pi/(2 beta)) / xi0))`` [-].
+
+    Seed 001 Eqs. 4-5, with ``xi0 = tan(beta) / (H/L0)^0.4`` and beta the slope angle [rad]. The
+    seed prints the exponent without its minus sign, ``exp(+sqrt(pi/(2 beta))/xi0)``, which makes
+    R/H negative for every slope (about -4e8 on a 1:15 beach); the minus sign is restored
+    here so that the factor in brackets tends to 1 on gentle slopes, which is the reading used.
+
+    Args:
+        height: wave height H near the toe [m]; l0: deep-water wavelength L0 [m];
+        slope: tan(beta) [-].
+    """
+    H = _positive("height", height)
+    L0 = _positive("l0", l0)
+    s = _positive("slope", slope)
+    steepness = H / L0
+    xi0 = s / steepness**0.4
+    beta = np.arctan(s)
+    return _out(
+        1.8 * (1.0 - 3.1 * steepness) * xi0 * (1.0 - np.exp(-np.sqrt(np.pi / (2.0 * beta)) / xi0))
+    )
+
+
+def linear_momentum_flux_parameter(
+    height: npt.ArrayLike, period: npt.ArrayLike, depth: npt.ArrayLike, g: float = G
+) -> FloatArray:
+    """Maximum depth-integrated wave momentum flux ``(M_F / (rho g h^2))_max`` [-], linear theory.
+
+    ``(1/2)(H/h) tanh(kh)/(kh) + (1/8)(H/h)^2 (1 + 2kh/sinh 2kh)``: the dynamic pressure and
+    ``rho u^2`` of linear theory integrated over the depth under the crest, the parameter of
+    Hughes (2004) used by :func:`hughes_runup`. Derived here from Airy theory; Hughes also gives
+    a fit to nonlinear (Fourier) waves, which was not available to check and is not implemented.
+
+    Args:
+        height: wave height H at the toe [m]; period: T [s]; depth: toe depth h [m].
+    """
+    H = _positive("height", height)
+    h = _positive("depth", depth)
+    kh = np.asarray(wavenumber(period, h, g)) * h
+    rel = H / h
+    return _out(
+        0.5 * rel * np.tanh(kh) / kh + 0.125 * rel * rel * (1.0 + _two_x_over_sinh_two_x(kh))
+    )
+
+
+def hughes_runup(slope: npt.ArrayLike, momentum_flux_parameter: npt.ArrayLike) -> FloatArray:
+    """Hughes (2004), non-breaking waves: ``R / H = 3.84 tan(beta) sqrt(M_F / (rho g h^2))`` [-].
+
+    Seed 001 Eq. 6. The seed prints ``3.84 tanh(M_F/(rho g h^2))^(1/2)``; its next sentence says
+    the formula depends on the slope through tan(beta), so "tanh" is read as ``tan(beta)`` times
+    the square root. Seed 001 notes that it fails on steep slopes (beta > 30 deg).
+
+    Args:
+        slope: tan(beta) [-].
+        momentum_flux_parameter: ``(M_F / (rho g h^2))_max`` [-], e.g. from
+            :func:`linear_momentum_flux_parameter`.
+    """
+    s = _positive("slope", slope)
+    m = _nonnegative("momentum_flux_parameter", momentum_flux_parameter)
+    return _out(3.84 * s * np.sqrt(m))
+
+
+def hsu_runup(xi: npt.ArrayLike, slope: npt.ArrayLike) -> FloatArray:
+    """Hsu et al. (2012): ``R / H = 2 (0.5 xi)^(0.04 / tan^2 beta)`` [-] (seed 001 Eq. 7).
+
+    Fitted for 1/5 <= tan(beta) <= 1/2 and xi <= 3 (Hsu et al. 2012, abstract); on gentler
+    slopes the exponent grows as 1/tan^2 and R/H collapses towards 0 (about 2e-7 on 1:15), so it
+    is meaningless there.
+    """
+    x = _nonnegative("xi", xi)
+    s = _positive("slope", slope)
+    return _out(2.0 * (0.5 * x) ** (0.04 / (s * s)))
+
+
+# ------------------------------------------------------------------------------------------------
+# Solitary waves
+
+
+def _solitary_shape(height: FloatLike, depth: FloatLike) -> FloatLike:
+    """``K = sqrt(3 H / (4 d))`` [-], the dimensionless solitary-wave shape factor (FORMULAS §5)."""
+    return np.sqrt(0.75 * height / depth)
+
+
+def solitary_celerity(height: npt.ArrayLike, depth: npt.ArrayLike, g: float = G) -> FloatArray:
+    """Solitary-wave celerity ``c = sqrt(g (d + H))`` [m/s] (Goring 1978)."""
+    H = _positive("height", height)
+    return _out(np.sqrt(float(_positive("g", g)) * (_positive("depth", depth) + H)))
+
+
+def solitary_wave_elevation(
+    x: npt.ArrayLike, t: npt.ArrayLike, height: float, depth: float, x0: float = 0.0, g: float = G
+) -> FloatArray:
+    """Solitary wave ``eta = H sech^2(K (x - x0 - c t) / d)`` [m], ``K = sqrt(3H/(4d))``.
+
+    FORMULAS §5 (Synolakis 1987 initial condition, the NTHMP benchmark form) travelling towards
+    +x at ``c = sqrt(g (d + H))`` (Goring 1978); the crest is at x0 at t = 0.
+    """
+    xx = _finite("x", x)
+    tt = _finite("t", t)
+    H = float(_positive("height", height))
+    d = float(_positive("depth", depth))
+    K = float(_solitary_shape(np.float64(H), np.float64(d)))
+    c = float(solitary_celerity(H, d, g))
+    arg = np.abs(K * (xx - float(_finite("x0", x0)) - c * tt) / d)
+    return _out(H * _sech(arg) ** 2)
+
+
+def solitary_piston_stroke(height: npt.ArrayLike, depth: npt.ArrayLike) -> FloatArray:
+    """Total piston stroke of Goring's (1978) solitary-wave generation ``S = sqrt(16 H d / 3)`` [m].
+
+    ``S = 2 H / K`` with ``K = sqrt(3 H / (4 d))``; the truncated motion of
+    :func:`solitary_piston_motion` covers ``S tanh(A)`` of it.
+    """
+    H = _positive("height", height)
+    return _out(np.sqrt(16.0 * H * _positive("depth", depth) / 3.0))
+
+
+def _goring_start(truncation: float) -> float:
+    """``A = arccosh(1 / sqrt(eps))``: the start and end phase where eta = eps H (Goring 1978)."""
+    eps = float(_positive("truncation", truncation))
+    if eps >= 1.0:
+        raise ValueError(f"truncation: must be < 1, got {truncation!r}")
+    return math.acosh(1.0 / math.sqrt(eps))
+
+
+def solitary_piston_duration(
+    height: npt.ArrayLike, depth: npt.ArrayLike, truncation: float = 0.002, g: float = G
+) -> FloatArray:
+    """Duration of Goring's solitary-wave piston motion [s].
+
+    ``(2 A d / K + S tanh A) / c`` with ``A = arccosh(1/sqrt(truncation))``: the motion starts
+    and ends where the generated elevation is ``truncation * H``. Goring's (1978) rule
+    ``2 (3.8 + H/d) / (kappa c)`` (kappa = K/d) is the case truncation = 0.002 (A = 3.8).
+    """
+    H = _positive("height", height)
+    d = _positive("depth", depth)
+    A = _goring_start(truncation)
+    K = _solitary_shape(H, d)
+    c = np.asarray(solitary_celerity(H, d, g))
+    S = 2.0 * H / K
+    return _out((2.0 * A * d / K + S * math.tanh(A)) / c)
+
+
+def solitary_piston_motion(
+    t: npt.ArrayLike, height: float, depth: float, truncation: float = 0.002, g: float = G
+) -> tuple[FloatArray, FloatArray]:
+    """Goring (1978) piston motion generating a solitary wave: displacement X [m], velocity [m/s].
+
+    The paddle moves with the depth-averaged velocity under the wave, ``dX/dt = c eta / (d +
+    eta)``, with ``eta = H sech^2(theta)``, which integrates to the implicit trajectory::
+
+        X(t) = (H / K) [tanh(theta) + tanh(A)],   theta = (K / d) (c t - X(t) - lambda)
+
+    with ``K = sqrt(3H/(4d))``, ``c = sqrt(g (d + H))``, ``A = arccosh(1 / sqrt(truncation))``
+    and ``lambda = A d / K``, so that X(0) = 0 and the motion starts and ends where eta is
+    ``truncation * H``. Form of Goring (1978) as transcribed in a public Fortran wave-maker
+    routine (``XP(T) = H/K [tanh(X(T)) + tanh(K lambda / D)]``); velocity
+    ``dX/dt = c (H/d) / (cosh^2(theta) + H/d)``. The implicit equation is solved by Newton's
+    method (its derivative ``1 + (H/d) sech^2 theta`` is >= 1, so it converges from any start).
+    Before t = 0 X = 0; after the duration (:func:`solitary_piston_duration`) X holds still.
+
+    Args:
+        t: times [s]; height: H [m]; depth: d [m].
+        truncation: eta / H at which the motion starts and stops (Goring's 3.8 <-> 0.002).
+    """
+    tt = _finite("t", t)
+    H = float(_positive("height", height))
+    d = float(_positive("depth", depth))
+    A = _goring_start(truncation)
+    K = float(_solitary_shape(np.float64(H), np.float64(d)))
+    c = float(solitary_celerity(H, d, g))
+    t_end = float(solitary_piston_duration(H, d, truncation, g))
+    lam = A * d / K
+    half = H / K
+    tc = np.clip(tt, 0.0, t_end)
+    x = half * (np.tanh(K / d * (c * tc - lam)) + math.tanh(A))
+    for _ in range(60):
+        theta = K / d * (c * tc - x - lam)
+        th = np.tanh(theta)
+        residual = x - half * (th + math.tanh(A))
+        step = residual / (1.0 + H / d * (1.0 - th * th))
+        x = x - step
+        if np.all(np.abs(step) <= 4.0 * _FLOAT_EPS * (2.0 * half)):
+            break
+    theta = K / d * (c * tc - x - lam)
+    sech2 = _sech(np.abs(theta)) ** 2
+    velocity = c * (H / d) * sech2 / (1.0 + H / d * sech2)
+    moving = (tt > 0.0) & (tt < t_end)
+    return _out(np.where(tt > 0.0, x, 0.0)), _out(np.where(moving, velocity, 0.0))
+
+
+def synolakis_runup(
+    height: npt.ArrayLike, depth: npt.ArrayLike, slope: npt.ArrayLike
+) -> FloatArray:
+    """Synolakis (1987) solitary-wave run-up law ``R / d = 2.831 sqrt(cot beta) (H/d)^(5/4)`` [-].
+
+    FORMULAS §6; non-breaking run-up only (on the 1:19.85 beach of the NTHMP benchmark,
+    FORMULAS §5 says breaking occurs for H/d > 0.045). Returns R / d; R is the vertical run-up
+    above the still-water level.
+
+    Args:
+        height: solitary wave height H [m]; depth: offshore depth d [m]; slope: tan(beta) [-].
+    """
+    H = _positive("height", height)
+    d = _positive("depth", depth)
+    return _out(2.831 * np.sqrt(1.0 / _positive("slope", slope)) * (H / d) ** 1.25)
+
+
+# ------------------------------------------------------------------------------------------------
+# Irregular waves
+
+
+def pierson_moskowitz_spectrum(frequency: npt.ArrayLike, hs: float, tp: float) -> FloatArray:
+    """Pierson-Moskowitz spectrum in its (Hs, Tp) form, ``S(f)`` [m^2/Hz].
+
+    ``S(f) = (5/16) Hs^2 fp^4 f^-5 exp(-(5/4)(fp/f)^4)``, fp = 1/Tp (Pierson & Moskowitz 1964,
+    in the Bretschneider/ITTC form, e.g. DNV-RP-C205 section 3.5.5). Its zeroth moment is exactly
+    ``Hs^2 / 16``, so ``Hm0 = 4 sqrt(m0) = Hs``. S(0) = 0.
+
+    Args:
+        frequency: f [Hz], >= 0.
+        hs: significant wave height Hm0 [m]; tp: peak period [s].
+    """
+    f = _nonnegative("frequency", frequency)
+    Hs = float(_positive("hs", hs))
+    fp = 1.0 / float(_positive("tp", tp))
+    # In u = fp / f: S = (5/16) Hs^2 / fp * u^5 exp(-1.25 u^4); below f = fp/10 S < 1e-5000.
+    u = fp / np.maximum(f, 0.1 * fp)
+    s = 5.0 / 16.0 * Hs * Hs / fp * u**5 * np.exp(-1.25 * u**4)
+    return _out(np.where(f > 0.1 * fp, s, 0.0))
+
+
+def _jonswap_peak_factor(f_over_fp: FloatLike, gamma: float) -> FloatArray:
+    """``gamma^r``, ``r = exp(-(f/fp - 1)^2 / (2 sigma^2))``, sigma 0.07 below fp, 0.09 above."""
+    sigma = np.where(f_over_fp <= 1.0, 0.07, 0.09)
+    return gamma ** np.exp(-((f_over_fp - 1.0) ** 2) / (2.0 * sigma * sigma))
+
+
+@functools.lru_cache(maxsize=32)
+def _jonswap_normalisation(gamma: float) -> float:
+    """Factor making the JONSWAP zeroth moment ``Hs^2 / 16`` exactly.
+
+    In u = f / fp with Hs = 1, the Pierson-Moskowitz part integrates in closed form,
+    ``int_0^u (5/16) v^-5 exp(-1.25 v^-4) dv = exp(-1.25 u^-4) / 16``. Outside 0.5 <= u <= 3 the
+    peak factor differs from 1 by less than 1e-10, so those tails use the closed form and
+    [0.5, 1] and [1, 3] use 200-point Gauss-Legendre quadrature (the peak factor's second
+    derivative jumps at u = 1).
+    """
+    nodes, weights = np.polynomial.legendre.leggauss(200)
+
+    def integral(a: float, b: float) -> float:
+        u = 0.5 * (b - a) * nodes + 0.5 * (a + b)
+        pm = 5.0 / 16.0 * u**-5 * np.exp(-1.25 * u**-4)
+        return 0.5 * (b - a) * float(np.sum(weights * pm * _jonswap_peak_factor(u, gamma)))
+
+    def pm_cumulative(u: float) -> float:
+        return math.exp(-1.25 * u**-4) / 16.0
+
+    total = pm_cumulative(0.5) + integral(0.5, 1.0) + integral(1.0, 3.0) + 1.0 / 16.0
+    return (1.0 / 16.0) / (total - pm_cumulative(3.0))
+
+
+def jonswap_spectrum(
+    frequency: npt.ArrayLike, hs: float, tp: float, gamma: float = 3.3
+) -> FloatArray:
+    """JONSWAP spectrum in its (Hs, Tp, gamma) form, ``S(f)`` [m^2/Hz].
+
+    ``S(f) = C(gamma) S_PM(f) gamma^r``, ``r = exp(-(f - fp)^2 / (2 sigma^2 fp^2))``, sigma =
+    0.07 for f <= fp and 0.09 above (Hasselmann et al. 1973; DNV-RP-C205 section 3.5.5). The
+    normalising factor C(gamma) is computed by quadrature so that ``4 sqrt(m0) = Hs`` exactly
+    (DNV's closed form ``1 - 0.287 ln gamma`` approximates it). gamma = 1 gives
+    Pierson-Moskowitz.
+
+    Args:
+        frequency: f [Hz], >= 0; hs: Hm0 [m]; tp: peak period [s]; gamma: peak enhancement >= 1.
+    """
+    g_ = float(_finite("gamma", gamma))
+    if g_ < 1.0:
+        raise ValueError(f"gamma: must be >= 1, got {gamma!r}")
+    f = _nonnegative("frequency", frequency)
+    base = np.asarray(pierson_moskowitz_spectrum(f, hs, tp))
+    return _out(_jonswap_normalisation(g_) * base * _jonswap_peak_factor(f * float(tp), g_))
+
+
+@dataclass(frozen=True)
+class IrregularPaddleMotion:
+    """Components of an irregular paddle motion (what the core sums each step).
+
+    The law, for t >= 0 (r(t) the ramp of :meth:`motion`)::
+
+        X(t) = r(t) sum_i stroke_amplitudes[i] sin(2 pi frequencies[i] t + phases[i])
+        U(t) = dX/dt
+
+    and the target linear wave is ``eta(x, t) = sum_i wave_amplitudes[i] cos(2 pi f_i t -
+    k_i x + phases[i])`` (the paddle at x = 0). The signal repeats with ``repeat_period``.
+
+    Attributes:
+        paddle: ``"piston"`` or ``"flap"`` (flap: displacement at the still-water level).
+        depth: still-water depth at the paddle [m].
+        repeat_period: 1 / frequency spacing [s]; every frequency is a multiple of its inverse.
+        frequencies: component frequencies f_i [Hz].
+        wavenumbers: linear wavenumbers k_i [rad/m].
+        wave_amplitudes: target wave amplitudes a_i [m].
+        stroke_amplitudes: paddle amplitudes a_i / (H/S)(k_i d), i.e. half strokes [m].
+        phases: phases [rad].
+    """
+
+    paddle: Paddle
+    depth: float
+    repeat_period: float
+    frequencies: FloatArray
+    wavenumbers: FloatArray
+    wave_amplitudes: FloatArray
+    stroke_amplitudes: FloatArray
+    phases: FloatArray
+
+    def motion(
+        self, t: npt.ArrayLike, ramp_time: float = 0.0, ramp: RampKind = "linear"
+    ) -> tuple[FloatArray, FloatArray]:
+        """Paddle displacement X [m] and velocity dX/dt [m/s] at times ``t`` [s].
+
+        Args:
+            t: times [s] (any shape).
+            ramp_time: ramp duration [s] (0: none); ramp: ``"linear"`` or ``"tanh"`` as in
+                :meth:`RegularPaddleMotion.motion`.
+        """
+        tt = _finite("t", t)
+        rt = float(_nonnegative("ramp_time", ramp_time))
+        _choice("ramp", ramp, ("linear", "tanh"))
+        r, dr = _ramp(tt, rt, ramp)
+        w = 2.0 * np.pi * self.frequencies
+        arg = np.multiply.outer(tt, w) + self.phases
+        base = np.sin(arg) @ self.stroke_amplitudes
+        rate = np.cos(arg) @ (self.stroke_amplitudes * w)
+        return _out(r * base), _out(dr * base + r * rate)
+
+    def target_elevation(self, t: npt.ArrayLike, x: float = 0.0) -> FloatArray:
+        """Target linear surface elevation [m] at ``x`` [m] from the paddle, times ``t`` [s]."""
+        tt = _finite("t", t)
+        xx = float(_finite("x", x))
+        arg = np.multiply.outer(tt, 2.0 * np.pi * self.frequencies) - self.wavenumbers * xx
+        return _out(np.cos(arg + self.phases) @ self.wave_amplitudes)
+
+
+def irregular_paddle_motion(
+    hs: float,
+    tp: float,
+    depth: float,
+    spectrum: Literal["jonswap", "pierson-moskowitz"] = "jonswap",
+    gamma: float = 3.3,
+    seed: int = 0,
+    random_amplitudes: bool = False,
+    paddle: Paddle = "piston",
+    frequency_range: tuple[float, float] = (0.5, 3.0),
+    repeat_period: float | None = None,
+    g: float = G,
+) -> IrregularPaddleMotion:
+    """Seeded, reproducible synthesis of an irregular wave through the paddle transfer function.
+
+    Components sit at every multiple of ``1 / repeat_period`` in ``frequency_range`` (in units
+    of the peak frequency 1/Tp). Amplitudes ``a_i = sqrt(2 S(f_i) df)`` (deterministic) or, with
+    ``random_amplitudes``, ``a_i = sqrt(2 S(f_i) df E_i)`` with E_i standard exponential, so a_i
+    is Rayleigh distributed with the same mean energy (random-amplitude scheme, e.g. Tucker et
+    al. 1984). Phases are uniform in [0, 2 pi). Both come from ``numpy.random.default_rng(seed)``
+    (phases first, then the exponentials), so a seed always gives the same phases. Each
+    component's stroke amplitude is ``a_i / (H/S)(k_i d)`` with the first-order Biesel transfer
+    function of the paddle (FORMULAS §2; Liu & Frigaard 2001 describe this linear synthesis).
+
+    The energy outside ``frequency_range`` is left out: with the default (0.5, 3.0) fp that is
+    about 1.5 % of m0 for Pierson-Moskowitz (Hm0 0.8 % low); widen the range to reduce it.
+
+    Args:
+        hs: significant wave height Hm0 [m]; tp: peak period [s]; depth: depth at the paddle [m].
+        spectrum: ``"jonswap"`` (:func:`jonswap_spectrum`) or ``"pierson-moskowitz"``.
+        gamma: JONSWAP peak enhancement factor (ignored for Pierson-Moskowitz).
+        seed: seed of the random generator.
+        random_amplitudes: draw Rayleigh amplitudes instead of deterministic ones.
+        paddle: ``"piston"`` or ``"flap"``.
+        frequency_range: (low, high) component frequencies in units of 1/Tp.
+        repeat_period: repeat period of the synthesised signal [s], i.e. 1 / frequency spacing;
+            default 256 Tp.
+    """
+    Hs = float(_positive("hs", hs))
+    Tp = float(_positive("tp", tp))
+    d = float(_positive("depth", depth))
+    _choice("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
+    _choice("paddle", paddle, ("piston", "flap"))
+    lo, hi = (float(v) for v in _positive("frequency_range", frequency_range))
+    if not lo < hi:
+        raise ValueError(f"frequency_range: low must be < high, got {frequency_range!r}")
+    if repeat_period is None:
+        period_rep = 256.0 * Tp
+    else:
+        period_rep = float(_positive("repeat_period", repeat_period))
+    df = 1.0 / period_rep
+    first = math.ceil(lo / Tp / df - 1e-9)
+    last = math.floor(hi / Tp / df + 1e-9)
+    if last < first:
+        raise ValueError(
+            f"repeat_period: {period_rep!r} s leaves no component in frequency_range"
+            f" {frequency_range!r}"
+        )
+    f = np.arange(first, last + 1, dtype=np.float64) * df
+    if spectrum == "jonswap":
+        density = np.asarray(jonswap_spectrum(f, Hs, Tp, gamma))
+    else:
+        density = np.asarray(pierson_moskowitz_spectrum(f, Hs, Tp))
+    rng = np.random.default_rng(seed)
+    phases = rng.uniform(0.0, 2.0 * np.pi, f.size)
+    energy = rng.standard_exponential(f.size) if random_amplitudes else np.ones(f.size)
+    amplitudes = np.sqrt(2.0 * density * df * energy)
+    k = np.asarray(wavenumber(1.0 / f, d, g))
+    transfer = piston_height_to_stroke if paddle == "piston" else flap_height_to_stroke
+    strokes = amplitudes / np.asarray(transfer(k, d))
+    return IrregularPaddleMotion(
+        paddle=paddle,
+        depth=d,
+        repeat_period=period_rep,
+        frequencies=f,
+        wavenumbers=k,
+        wave_amplitudes=amplitudes,
+        stroke_amplitudes=strokes,
+        phases=phases,
+    )
+
+
+# ------------------------------------------------------------------------------------------------
+# Validity of a requested regular wave
+
+
+def check_wave(
+    height: float,
+    period: float,
+    depth: float,
+    order: int = 1,
+    paddle: Paddle = "piston",
+    g: float = G,
+) -> list[str]:
+    """Reasons why a requested regular wave is outside the validity of its generation, if any.
+
+    Checks, in this order:
+
+    1. Ursell number ``H L^2 / d^3`` above 8 pi^2 / 3 ~ 26.3, the limit used with Madsen's
+       second-order generation (FORMULAS §3): beyond second-order Stokes theory (cnoidal range).
+    2. Stokes second-order profile with a secondary crest in the trough: the bound second
+       harmonic exceeds a quarter of the first harmonic amplitude (``a2 > H/8``), where the
+       expansion of FORMULAS §4 no longer describes the wave.
+    3. Breaking at the paddle: ``H/d > 0.78`` (McCowan) or ``H > 0.142 L tanh(kd)`` (Miche).
+    4. Paddle against depth (water-depth classes of Dean & Dalrymple 1991, ch. 3): a piston
+       in deep water (kd > pi) moves the whole column although the wave motion decays with
+       depth (a flap matches it); a flap in shallow water (kd < pi/10) needs about twice the
+       stroke of a piston (H/S -> kd/2 against kd).
+
+    Returns:
+        One message per problem found; an empty list when the wave is fine.
+    """
+    H = float(_positive("height", height))
+    T = float(_positive("period", period))
+    d = float(_positive("depth", depth))
+    law = regular_paddle_motion(H, T, d, paddle, order, 0.0, g)
+    k = law.wavenumber
+    kd = k * d
+    L = 2.0 * math.pi / k
+    problems: list[str] = []
+    ursell = float(ursell_number(H, T, d, g))
+    if ursell > MADSEN_URSELL_LIMIT:
+        problems.append(
+            f"Ursell number H L^2/d^3 = {ursell:.1f} exceeds 8 pi^2/3 = {MADSEN_URSELL_LIMIT:.1f}:"
+            f" the wave (H = {H} m, T = {T} s, d = {d} m) is beyond second-order Stokes theory"
+            " (cnoidal range); the generated wave will carry spurious free harmonics"
+        )
+    a2 = float(stokes2_second_harmonic_amplitude(H, k, d))
+    if a2 > 0.125 * H:
+        problems.append(
+            f"Stokes second harmonic a2 = {a2:.4g} m exceeds a quarter of the first harmonic"
+            f" (H/8 = {0.125 * H:.4g} m): the second-order profile has a secondary crest, the"
+            " expansion is not valid"
+        )
+    if H / d > MCCOWAN_BREAKING_RATIO:
+        problems.append(
+            f"H/d = {H / d:.3f} > {MCCOWAN_BREAKING_RATIO} (McCowan): the wave breaks at the paddle"
+        )
+    h_miche = MICHE_COEFFICIENT * L * math.tanh(kd)
+    if H > h_miche:
+        problems.append(
+            f"H = {H} m > 0.142 L tanh(kd) = {h_miche:.4g} m (Miche): the wave is too steep and"
+            " breaks at the paddle"
+        )
+    if paddle == "piston" and kd > math.pi:
+        problems.append(
+            f"kd = {kd:.2f} > pi (deep water, d/L > 1/2): a piston moves the whole depth although"
+            " the wave motion decays with depth; a flap suits deep water better"
+        )
+    if paddle == "flap" and kd < math.pi / 10.0:
+        problems.append(
+            f"kd = {kd:.3f} < pi/10 (shallow water, d/L < 1/20): a flap needs about twice the"
+            f" stroke of a piston (S = {law.stroke:.4g} m); use a piston"
+        )
+    return problems
+
+
+def warn_if_invalid_wave(
+    height: float,
+    period: float,
+    depth: float,
+    order: int = 1,
+    paddle: Paddle = "piston",
+    g: float = G,
+) -> list[str]:
+    """Emit each message of :func:`check_wave` as a :class:`WaveValidityWarning`; return them."""
+    problems = check_wave(height, period, depth, order, paddle, g)
+    for message in problems:
+        warnings.warn(message, WaveValidityWarning, stacklevel=2)
+    return problems
