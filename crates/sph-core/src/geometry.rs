@@ -29,6 +29,8 @@ pub struct Sampled<D: Dim> {
 enum Solid<D: Dim> {
     Box { min: D::V, max: D::V },
     Plane { point: D::V, normal: D::V },
+    /// Bed polyline in the x-z plane (vertices in order of increasing x).
+    Profile { x: Vec<Real>, z: Vec<Real>, line: parry2d_f64::shape::Polyline },
 }
 
 impl<D: Dim> Solid<D> {
@@ -37,7 +39,27 @@ impl<D: Dim> Solid<D> {
         match self {
             Solid::Box { min, max } => D::box_signed_distance(*min, *max, p),
             Solid::Plane { point, normal } => D::plane_signed_distance(*point, *normal, p),
+            Solid::Profile { x, z, line } => profile_signed_distance(x, z, line, p.get(0), p.vertical()),
         }
+    }
+}
+
+/// Signed distance from `(px, pz)` to the bed polyline, by parry's 2D polyline projection;
+/// negative below the bed (inside the solid). Outside `[x[0], x[n-1]]` there is no solid.
+fn profile_signed_distance(x: &[Real], z: &[Real], line: &parry2d_f64::shape::Polyline, px: Real, pz: Real) -> Real {
+    use parry2d_f64::query::PointQuery;
+    let p = glam::DVec2::new(px, pz);
+    let d = (line.project_local_point(p, false).point - p).length();
+    let n = x.len();
+    if px < x[0] || px > x[n - 1] {
+        return d.max(Real::MIN_POSITIVE);
+    }
+    let i = x.partition_point(|&v| v <= px).clamp(1, n - 1);
+    let bed = z[i - 1] + (z[i] - z[i - 1]) * (px - x[i - 1]) / (x[i] - x[i - 1]);
+    if pz < bed {
+        -d
+    } else {
+        d
     }
 }
 
@@ -53,6 +75,10 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
         .iter()
         .map(|o| match o {
             Obstacle::Box { min, max } => Solid::Box { min: D::V::from_slice(min), max: D::V::from_slice(max) },
+            Obstacle::Profile { x, z } => {
+                let vertices = x.iter().zip(z).map(|(&a, &b)| glam::DVec2::new(a, b)).collect();
+                Solid::Profile { x: x.clone(), z: z.clone(), line: parry2d_f64::shape::Polyline::new(vertices, None) }
+            }
             Obstacle::Plane { point, normal } => {
                 let n = D::V::from_slice(normal);
                 Solid::Plane { point: D::V::from_slice(point), normal: n * (1.0 / n.length()) }
@@ -247,6 +273,27 @@ mod tests {
             let d = Dim2::plane_signed_distance(glam::DVec2::new(2.0, 0.0), glam::DVec2::new(-0.5, 1.0).normalize(), *p);
             assert!(d >= 0.025 - 1e-12);
         }
+    }
+
+    #[test]
+    fn profile_bar_matches_its_area() {
+        // a trapezoidal bar 0.3 m high: 1:20 up over 6 m, 2 m crest, 1:10 down over 3 m
+        let s = scene(
+            r#"{"dim": 2, "dp": 0.02, "tank": {"min": [0, 0], "max": [20, 0.6]},
+                "obstacles": [{"shape": "profile", "x": [6, 12, 14, 17], "z": [0, 0.3, 0.3, 0]}],
+                "fluid": [{"min": [0, 0], "max": [20, 0.4]}]}"#,
+        );
+        let g = sample::<Dim2>(&s).expect("sampled");
+        let area = 20.0 * 0.4 - g.fluid.len() as f64 * 0.02 * 0.02;
+        let bar = 0.5 * 6.0 * 0.3 + 2.0 * 0.3 + 0.5 * 3.0 * 0.3;
+        // plus a dp/2 strip along the 11 m of bed surface
+        assert!((area - bar - 0.01 * 11.0).abs() < 0.03, "removed {area}, bar {bar}");
+        assert!(Scene::from_json(
+            r#"{"dim": 2, "dp": 0.02, "tank": {"min": [0, 0], "max": [20, 0.6]},
+                "obstacles": [{"shape": "profile", "x": [6, 6], "z": [0, 0.3]}],
+                "fluid": [{"min": [0, 0], "max": [20, 0.4]}]}"#
+        )
+        .is_err());
     }
 
     #[test]

@@ -78,6 +78,9 @@ pub enum Obstacle {
     /// Solid on the side opposite `normal` (a beach: normal pointing up and offshore), clipped to
     /// the tank.
     Plane { point: Vec<Real>, normal: Vec<Real> },
+    /// Piecewise-linear bed: solid below the polyline through `(x[i], z[i])` (extruded across
+    /// the width in 3D), between `x[0]` and the last `x`. Bars, beaches, measured bathymetry.
+    Profile { x: Vec<Real>, z: Vec<Real> },
 }
 
 /// Velocity damping zone at the far end of a flume (DualSPHysics' damping zone form):
@@ -309,6 +312,20 @@ impl Scene {
             match o {
                 Obstacle::Box { min, max } => {
                     check_box(&f, &BoxSpec { min: min.clone(), max: max.clone() }, dim)?
+                }
+                Obstacle::Profile { x, z } => {
+                    if x.len() != z.len() || x.len() < 2 {
+                        return Err(Error::invalid(
+                            format!("{f}.z"),
+                            format!("needs as many values as x, at least 2 (x: {}, z: {})", x.len(), z.len()),
+                        ));
+                    }
+                    if let Some(v) = x.iter().chain(z).find(|v| !v.is_finite()) {
+                        return Err(Error::invalid(f, format!("values must be finite, got {v}")));
+                    }
+                    if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+                        return Err(Error::invalid(format!("{f}.x"), format!("must increase strictly (x[{i}] >= x[{}])", i + 1)));
+                    }
                 }
                 Obstacle::Plane { point, normal } => {
                     check_vector(&format!("{f}.point"), point, dim)?;
