@@ -19,6 +19,8 @@ pub struct Particles<D: Dim> {
     pub rho: Vec<Real>,
     /// Pressure from the equation of state, refreshed before every force evaluation.
     pub press: Vec<Real>,
+    /// `P / rho^2`, the momentum equation's per-particle factor, refreshed with `press`.
+    pub p_rho2: Vec<Real>,
     /// Creation order of the particle in each storage slot.
     pub id: Vec<u32>,
     /// Kind of each slot (constant: groups do not move).
@@ -50,7 +52,7 @@ impl<D: Dim> Particles<D> {
         use std::mem::size_of;
         let v = size_of::<D::V>();
         (self.pos.capacity() + self.vel.capacity() + self.acc.capacity()) * v
-            + (self.rho.capacity() + self.press.capacity() + self.drho.capacity()) * size_of::<Real>()
+            + (self.rho.capacity() + self.press.capacity() + self.p_rho2.capacity() + self.drho.capacity()) * size_of::<Real>()
             + self.id.capacity() * size_of::<u32>()
             + self.kind.capacity()
     }

@@ -177,6 +177,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             pos,
             vel: vec![D::V::ZERO; n],
             press: vec![0.0; n],
+            p_rho2: vec![0.0; n],
             rho,
             id: (0..n as u32).collect(),
             kind,
@@ -490,7 +491,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 pos: &self.p.pos,
                 vel: &self.p.vel,
                 rho: &self.p.rho,
-                press: &self.p.press,
+                p_rho2: &self.p.p_rho2,
                 tau: &[],
                 fluid_start: fs,
             };
@@ -500,7 +501,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             pos: &self.p.pos,
             vel: &self.p.vel,
             rho: &self.p.rho,
-            press: &self.p.press,
+            p_rho2: &self.p.p_rho2,
             tau: &self.tau,
             fluid_start: fs,
         };
@@ -512,7 +513,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     /// Pressure from the equation of state for the current densities and storage order.
     fn refresh_pressure(&mut self) {
         let c = self.c;
-        self.p.press.par_iter_mut().zip(self.p.rho.par_iter()).for_each(|(pr, &r)| *pr = pressure(&c, r));
+        let p = &mut self.p;
+        p.press.par_iter_mut().zip(p.p_rho2.par_iter_mut()).zip(p.rho.par_iter()).for_each(|((pr, q), &r)| {
+            *pr = pressure(&c, r);
+            *q = *pr / (r * r);
+        });
     }
 
     /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).

@@ -39,7 +39,8 @@ pub struct Fields<'a, D: Dim> {
     pub pos: &'a [D::V],
     pub vel: &'a [D::V],
     pub rho: &'a [Real],
-    pub press: &'a [Real],
+    /// `P / rho^2` per particle.
+    pub p_rho2: &'a [Real],
     /// SPS stress `tau / rho^2` per fluid particle (indexed from the first fluid particle); empty
     /// unless the SPS closure is on.
     pub tau: &'a [D::Sym],
@@ -93,8 +94,8 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
         .enumerate()
         .map(|(i, (acc_a, drho_a))| {
             let a = f.fluid_start + i;
-            let (pa, va, rhoa, pra) = (f.pos[a], f.vel[a], f.rho[a], f.press[a]);
-            let pa_rho2 = pra / (rhoa * rhoa);
+            let (pa, va, rhoa) = (f.pos[a], f.vel[a], f.rho[a]);
+            let pa_rho2 = f.p_rho2[a];
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
             let mut sum_acc = D::V::ZERO;
@@ -107,25 +108,26 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     let gw = r * fk;
                     let vab = va - f.vel[b];
                     let rhob = f.rho[b];
-                    sum_drho += c.mass * vab.dot(gw);
+                    sum_drho += vab.dot(gw);
 
                     let vr = vab.dot(r);
-                    let visc_rate = c.h * vr / (r2 + c.eta2);
+                    let inv_r2_eta2 = 1.0 / (r2 + c.eta2);
+                    let visc_rate = c.h * vr * inv_r2_eta2;
                     max_visc = max_visc.max(visc_rate.abs());
-                    let mut p_term = pa_rho2 + f.press[b] / (rhob * rhob);
+                    let mut p_term = pa_rho2 + f.p_rho2[b];
                     if VISC == VISC_ARTIFICIAL && vr < 0.0 {
                         let cbar = 0.5 * (ca + sound_speed(c, rhob));
                         let rhobar = 0.5 * (rhoa + rhob);
                         p_term += -c.alpha * cbar * visc_rate / rhobar;
                     }
-                    sum_acc -= gw * (c.mass * p_term);
+                    sum_acc -= gw * p_term;
                     if VISC != VISC_ARTIFICIAL {
-                        let lam = c.mass * 4.0 * c.nu * r.dot(gw) / ((rhoa + rhob) * (r2 + c.eta2));
+                        let lam = 4.0 * c.nu * r.dot(gw) * inv_r2_eta2 / (rhoa + rhob);
                         sum_acc += vab * lam;
                     }
                     if VISC == VISC_LAMINAR_SPS && is_fluid {
                         let tb = &f.tau[b - f.fluid_start];
-                        sum_acc += D::sym_dot(&tau_a, gw) * c.mass + D::sym_dot(tb, gw) * c.mass;
+                        sum_acc += D::sym_dot(&tau_a, gw) + D::sym_dot(tb, gw);
                     }
                     if DIFF != DIFF_NONE && is_fluid {
                         let mut drho_ba = rhob - rhoa;
@@ -134,13 +136,14 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                         }
                         debug_assert!(DIFF == DIFF_MOLTENI || DIFF == DIFF_FOURTAKAS);
                         // r_ba . grad_a W_ab = -r_ab . grad_a W_ab = -r2 F > 0
-                        sum_diff += 2.0 * drho_ba * (-r2 * fk) / (r2 + c.eta2) * c.mass / rhob;
+                        sum_diff += 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 / rhob;
                     }
                 });
             }
-            let a_total = sum_acc + g;
+            // every particle has the same mass: it is factored out of the sums
+            let a_total = sum_acc * c.mass + g;
             *acc_a = a_total;
-            *drho_a = sum_drho + c.delta_h_c0 * sum_diff;
+            *drho_a = c.mass * (sum_drho + c.delta_h_c0 * sum_diff);
             StepLimits { max_acc: a_total.length(), min_dt_cv: c.h / (ca + max_visc) }
         })
         .reduce(|| StepLimits::NONE, StepLimits::merge)
