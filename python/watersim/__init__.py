@@ -16,6 +16,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 from . import analysis, wave_theory
 from ._core import InstabilityError, SceneError
+from .checkpoint import load_checkpoint, save_checkpoint
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
@@ -36,7 +37,9 @@ __all__ = [
     "analysis",
     "front_error",
     "front_position",
+    "load_checkpoint",
     "load_martin_moyce",
+    "save_checkpoint",
     "water_column_height",
     "wave_theory",
 ]

@@ -31,6 +31,10 @@ pub enum InstabilityKind {
     DensityOutOfRange,
     /// The time step fell below its floor.
     TimeStepCollapse,
+    /// More fluid particles left the domain than the scene allows.
+    OutOfDomain,
+    /// Mechanical energy grew without forcing.
+    EnergyGrowth,
 }
 
 impl std::fmt::Display for InstabilityKind {
@@ -45,6 +49,8 @@ impl InstabilityKind {
             InstabilityKind::NonFinite => "non_finite",
             InstabilityKind::DensityOutOfRange => "density_out_of_range",
             InstabilityKind::TimeStepCollapse => "time_step_collapse",
+            InstabilityKind::OutOfDomain => "out_of_domain",
+            InstabilityKind::EnergyGrowth => "energy_growth",
         }
     }
 }

@@ -11,6 +11,8 @@ use crate::math::{Dim, Real};
 pub const KIND_FLUID: u8 = 0;
 pub const KIND_FIXED: u8 = 1;
 pub const KIND_MOVING: u8 = 2;
+/// A fluid particle that left the domain: frozen and left out of the physics.
+pub const KIND_EXCLUDED: u8 = 3;
 
 #[derive(Debug, Clone)]
 pub struct Particles<D: Dim> {
@@ -23,7 +25,7 @@ pub struct Particles<D: Dim> {
     pub p_rho2: Vec<Real>,
     /// Creation order of the particle in each storage slot.
     pub id: Vec<u32>,
-    /// Kind of each slot (constant: groups do not move).
+    /// Kind of each slot (fluid slots turn `KIND_EXCLUDED` when their particle leaves the domain).
     pub kind: Vec<u8>,
     /// Acceleration of fluid particles (indexed from `fluid_start`).
     pub acc: Vec<D::V>,

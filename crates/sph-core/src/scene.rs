@@ -148,6 +148,14 @@ pub struct Scene {
     /// Density band of the stability monitor: a density outside `rho0 (1 -+ x)` stops the run.
     #[serde(default = "default_density_band")]
     pub density_band: Real,
+    /// Fluid particles leaving the domain (the tank and its walls, and one tank height above it)
+    /// are frozen and excluded; the run stops when more than this fraction of the fluid is out.
+    #[serde(default = "default_lost_fraction_limit")]
+    pub lost_fraction_limit: Real,
+    /// Without a paddle, the run stops when the fluid's mechanical energy exceeds its initial
+    /// value by more than this fraction of the initial potential energy above the tank floor.
+    #[serde(default = "default_energy_growth_limit")]
+    pub energy_growth_limit: Real,
     /// Wave-maker paddle; none for tanks and dam breaks.
     #[serde(default)]
     pub paddle: Option<Paddle>,
@@ -189,6 +197,12 @@ fn default_integrator() -> Integrator {
 }
 fn default_density_band() -> Real {
     0.5
+}
+fn default_lost_fraction_limit() -> Real {
+    0.01
+}
+fn default_energy_growth_limit() -> Real {
+    0.05
 }
 
 fn check_positive(field: &str, v: Real) -> Result<()> {
@@ -280,6 +294,11 @@ impl Scene {
             return Err(Error::invalid("cfl", format!("must be <= 1, got {}", self.cfl)));
         }
         check_positive("density_band", self.density_band)?;
+        check_non_negative("lost_fraction_limit", self.lost_fraction_limit)?;
+        if self.lost_fraction_limit > 1.0 {
+            return Err(Error::invalid("lost_fraction_limit", format!("must be <= 1, got {}", self.lost_fraction_limit)));
+        }
+        check_positive("energy_growth_limit", self.energy_growth_limit)?;
         if let Some(d) = self.h_swl {
             check_positive("h_swl", d)?;
         }

@@ -12,7 +12,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
-use crate::particles::{permute, Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING};
+use crate::particles::{permute, Particles, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{boundary_density_rate, fluid_forces, sps_stress, Fields, StepLimits};
@@ -75,6 +75,28 @@ pub struct Interpolated {
     pub velocity: Vec<Real>,
 }
 
+/// Everything needed to continue a run exactly: the state in storage order, the integrator's
+/// history, the monitors' baselines and the gauge records. The motion law needs no state of its
+/// own: it is a function of time.
+#[derive(Clone, Debug, Default)]
+pub struct Checkpoint {
+    pub time: Real,
+    pub steps: u64,
+    pub dt: Real,
+    /// Flattened `(N, dim)`.
+    pub positions: Vec<Real>,
+    pub velocities: Vec<Real>,
+    pub densities: Vec<Real>,
+    pub ids: Vec<u32>,
+    pub kinds: Vec<u8>,
+    /// Verlet only: velocities and densities one step back (empty for Symplectic).
+    pub velocities_prev: Vec<Real>,
+    pub densities_prev: Vec<Real>,
+    pub n_excluded: usize,
+    pub energy0: (Real, Real),
+    pub gauges: Vec<GaugeRecord>,
+}
+
 /// The object-safe face of a solver, whatever its compile-time options.
 pub trait Simulation: Send + Sync {
     fn dim(&self) -> usize;
@@ -102,6 +124,11 @@ pub trait Simulation: Send + Sync {
     fn interpolate(&self, points: &[Real]) -> Result<Interpolated>;
     /// Gauge records, in the scene's order.
     fn gauges(&self) -> &[GaugeRecord];
+    /// Fluid particles excluded after leaving the domain.
+    fn n_excluded(&self) -> usize;
+    fn checkpoint(&self) -> Checkpoint;
+    /// Continues from a checkpoint of a run of the same scene.
+    fn restore(&mut self, checkpoint: &Checkpoint) -> Result<()>;
 }
 
 /// Integrator history.
@@ -119,6 +146,7 @@ struct Scratch<D: Dim> {
     vectors: Vec<D::V>,
     reals: Vec<Real>,
     ids: Vec<u32>,
+    kinds: Vec<u8>,
 }
 
 pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
@@ -142,7 +170,15 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     /// Resolved hinge height and still-water level of the paddle.
     paddle_levels: (Real, Real),
     gauges: Vec<GaugeRecord>,
+    /// Box outside which fluid particles are excluded.
+    domain: (D::V, D::V),
+    n_excluded: usize,
+    /// Initial mechanical energy and potential energy above the floor [J] (energy monitor).
+    energy0: (Real, Real),
 }
+
+/// Steps between two evaluations of the energy monitor.
+const ENERGY_CHECK_EVERY: u64 = 50;
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
     pub fn new(scene: Scene) -> Result<Self> {
@@ -214,6 +250,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             vectors: Vec::with_capacity(n),
             reals: Vec::with_capacity(n),
             ids: Vec::with_capacity(n),
+            kinds: Vec::with_capacity(n),
         };
         let mut solver = Self {
             scene,
@@ -231,7 +268,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             moving_ref: sampled.moving,
             paddle_levels: (0.0, 0.0),
             gauges: Vec::new(),
+            domain: (lo, hi),
+            n_excluded: 0,
+            energy0: (0.0, 0.0),
         };
+        solver.energy0 = (solver.fluid_energy(), solver.fluid_energy() - solver.floor_energy_offset());
         if let Some(paddle) = &solver.scene.paddle {
             let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
             let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
@@ -268,6 +309,97 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             v.set(0, uw[0]);
             v.set(up, uw[1]);
         });
+    }
+
+    /// Kinetic plus potential energy of the fluid still in the domain [J].
+    pub fn fluid_energy(&self) -> Real {
+        let fs = self.p.fluid_start();
+        let (g, m) = (self.c.gravity, self.c.mass);
+        let p = &self.p;
+        // fixed chunks reduced in order: the sum does not depend on the thread count
+        const CHUNK: usize = 4096;
+        let chunks: Vec<Real> = p.pos[fs..]
+            .par_chunks(CHUNK)
+            .zip(p.vel[fs..].par_chunks(CHUNK))
+            .zip(p.kind[fs..].par_chunks(CHUNK))
+            .map(|((x, v), k)| {
+                (0..x.len())
+                    .filter(|&i| k[i] == KIND_FLUID)
+                    .map(|i| m * (0.5 * v[i].length_squared() + g * x[i].vertical()))
+                    .sum::<Real>()
+            })
+            .collect();
+        chunks.iter().sum()
+    }
+
+    /// Potential energy the fluid would have with every particle on the tank floor [J].
+    fn floor_energy_offset(&self) -> Real {
+        let n = self.p.kind[self.p.fluid_start()..].iter().filter(|&&k| k == KIND_FLUID).count();
+        n as Real * self.c.mass * self.c.gravity * self.scene.tank.min[D::DIM - 1]
+    }
+
+    /// Freezes fluid particles that left the domain; errors past the scene's lost fraction.
+    fn exclude_escaped(&mut self) -> Result<()> {
+        let fs = self.p.fluid_start();
+        let (lo, hi) = self.domain;
+        let p = &mut self.p;
+        let newly: usize = p.kind[fs..]
+            .par_iter_mut()
+            .zip(p.vel[fs..].par_iter_mut())
+            .zip(p.pos[fs..].par_iter())
+            .map(|((k, v), x)| {
+                let inside = (0..D::DIM).all(|a| x.get(a) >= lo.get(a) && x.get(a) <= hi.get(a));
+                if *k == KIND_FLUID && !inside && x.is_finite() {
+                    *k = KIND_EXCLUDED;
+                    *v = D::V::ZERO;
+                    1
+                } else {
+                    0
+                }
+            })
+            .sum();
+        if newly == 0 {
+            return Ok(());
+        }
+        self.n_excluded += newly;
+        let limit = self.scene.lost_fraction_limit * self.p.n_fluid() as Real;
+        if self.n_excluded as Real > limit {
+            let first = (fs..self.p.len())
+                .filter(|&i| self.p.kind[i] == KIND_EXCLUDED)
+                .min_by_key(|&i| self.p.id[i]);
+            return Err(self.instability(
+                InstabilityKind::OutOfDomain,
+                first,
+                format!(
+                    "{} of {} fluid particles left the domain (limit {:.2} %)",
+                    self.n_excluded,
+                    self.p.n_fluid(),
+                    100.0 * self.scene.lost_fraction_limit
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Energy monitor for unforced scenes.
+    fn check_energy(&self) -> Result<()> {
+        if self.scene.paddle.is_some() || !self.steps.is_multiple_of(ENERGY_CHECK_EVERY) {
+            return Ok(());
+        }
+        let (e0, pot0) = self.energy0;
+        let e = self.fluid_energy();
+        let allowed = e0 + self.scene.energy_growth_limit * pot0.abs().max(Real::MIN_POSITIVE);
+        if e > allowed {
+            return Err(self.instability(
+                InstabilityKind::EnergyGrowth,
+                None,
+                format!(
+                    "fluid energy {e:.6e} J exceeds its initial {e0:.6e} J by {:.2} % of the initial potential energy",
+                    100.0 * (e - e0) / pot0.abs().max(Real::MIN_POSITIVE)
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Velocity damping zone (see [`crate::scene::Damping`]).
@@ -452,6 +584,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         permute(&mut self.p.vel, range.clone(), perm, &mut s.vectors);
         permute(&mut self.p.rho, range.clone(), perm, &mut s.reals);
         permute(&mut self.p.id, range.clone(), perm, &mut s.ids);
+        permute(&mut self.p.kind, range.clone(), perm, &mut s.kinds);
         match &mut self.history {
             History::Symplectic { pos0, vel0, rho0 } => {
                 permute(pos0, range.clone(), perm, &mut s.vectors);
@@ -491,6 +624,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 pos: &self.p.pos,
                 vel: &self.p.vel,
                 rho: &self.p.rho,
+                kind: &self.p.kind,
                 p_rho2: &self.p.p_rho2,
                 tau: &[],
                 fluid_start: fs,
@@ -501,6 +635,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             pos: &self.p.pos,
             vel: &self.p.vel,
             rho: &self.p.rho,
+            kind: &self.p.kind,
             p_rho2: &self.p.p_rho2,
             tau: &self.tau,
             fluid_start: fs,
@@ -675,6 +810,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         // Pressures readable between steps match the densities.
         self.refresh_pressure();
         self.check()?;
+        self.exclude_escaped()?;
+        self.check_energy()?;
         if !self.gauges.is_empty() {
             self.sample_gauges();
         }
@@ -747,7 +884,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
         };
         let s = &self.scratch;
-        let scratch = s.perm.capacity() * 4 + s.vectors.capacity() * v + s.reals.capacity() * r + s.ids.capacity() * 4;
+        let scratch = s.perm.capacity() * 4 + s.vectors.capacity() * v + s.reals.capacity() * r + s.ids.capacity() * 4 + s.kinds.capacity();
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()
@@ -812,5 +949,81 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     }
     fn gauges(&self) -> &[GaugeRecord] {
         &self.gauges
+    }
+    fn n_excluded(&self) -> usize {
+        self.n_excluded
+    }
+    fn checkpoint(&self) -> Checkpoint {
+        let (velocities_prev, densities_prev) = match &self.history {
+            History::Verlet { vel_prev, rho_prev, .. } => (flat(vel_prev).to_vec(), rho_prev.clone()),
+            History::Symplectic { .. } => (Vec::new(), Vec::new()),
+        };
+        Checkpoint {
+            time: self.time,
+            steps: self.steps,
+            dt: self.dt,
+            positions: flat(&self.p.pos).to_vec(),
+            velocities: flat(&self.p.vel).to_vec(),
+            densities: self.p.rho.clone(),
+            ids: self.p.id.clone(),
+            kinds: self.p.kind.clone(),
+            velocities_prev,
+            densities_prev,
+            n_excluded: self.n_excluded,
+            energy0: self.energy0,
+            gauges: self.gauges.clone(),
+        }
+    }
+    fn restore(&mut self, c: &Checkpoint) -> Result<()> {
+        let n = self.p.len();
+        let nd = n * D::DIM;
+        let expect = |field: &str, len: usize, want: usize| -> Result<()> {
+            if len == want {
+                Ok(())
+            } else {
+                Err(Error::invalid(
+                    format!("checkpoint.{field}"),
+                    format!("has {len} values, this scene needs {want}: the checkpoint is from another scene"),
+                ))
+            }
+        };
+        expect("positions", c.positions.len(), nd)?;
+        expect("velocities", c.velocities.len(), nd)?;
+        expect("densities", c.densities.len(), n)?;
+        expect("ids", c.ids.len(), n)?;
+        expect("kinds", c.kinds.len(), n)?;
+        expect("gauges", c.gauges.len(), self.gauges.len())?;
+        // ids must be a permutation that keeps every particle in its group
+        let fs = self.p.fluid_start() as u32;
+        let nf = self.p.n_fixed as u32;
+        for (slot, &id) in c.ids.iter().enumerate() {
+            let group_of = |i: u32| if i < nf { 0 } else if i < fs { 1 } else { 2 };
+            if id as usize >= n || group_of(id) != group_of(slot as u32) {
+                return Err(Error::invalid("checkpoint.ids", format!("slot {slot} holds id {id} of another group")));
+            }
+        }
+        if let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history {
+            expect("velocities_prev", c.velocities_prev.len(), nd)?;
+            expect("densities_prev", c.densities_prev.len(), n)?;
+            bytemuck::cast_slice_mut::<D::V, Real>(vel_prev).copy_from_slice(&c.velocities_prev);
+            rho_prev.copy_from_slice(&c.densities_prev);
+        }
+        bytemuck::cast_slice_mut::<D::V, Real>(&mut self.p.pos).copy_from_slice(&c.positions);
+        bytemuck::cast_slice_mut::<D::V, Real>(&mut self.p.vel).copy_from_slice(&c.velocities);
+        self.p.rho.copy_from_slice(&c.densities);
+        self.p.id.copy_from_slice(&c.ids);
+        self.p.kind.copy_from_slice(&c.kinds);
+        self.time = c.time;
+        self.steps = c.steps;
+        self.dt = c.dt;
+        self.n_excluded = c.n_excluded;
+        self.energy0 = c.energy0;
+        self.gauges = c.gauges.clone();
+        // The saved order is already sorted: the stable sort keeps it and rebuilds the cells.
+        self.sort_group(GROUP_FIXED);
+        self.sort_group(GROUP_MOVING);
+        self.sort_group(GROUP_FLUID);
+        self.refresh_pressure();
+        Ok(())
     }
 }

@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use sph_core::{Error, Simulation as CoreSimulation};
 
 create_exception!(_core, SceneError, PyValueError, "A scene field is invalid; the message names the field.");
@@ -236,6 +236,76 @@ impl Simulation {
             out.push(d);
         }
         Ok(out)
+    }
+
+    /// Fluid particles excluded after leaving the domain.
+    #[getter]
+    fn n_excluded(&self) -> usize {
+        self.inner.n_excluded()
+    }
+
+    /// The full state needed to continue this run exactly, as a dict of NumPy arrays and
+    /// scalars (see `watersim.Simulation.save_checkpoint`).
+    fn checkpoint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let c = self.inner.checkpoint();
+        let d = PyDict::new(py);
+        d.set_item("time", c.time)?;
+        d.set_item("steps", c.steps)?;
+        d.set_item("dt", c.dt)?;
+        d.set_item("positions", PyArray1::from_vec(py, c.positions))?;
+        d.set_item("velocities", PyArray1::from_vec(py, c.velocities))?;
+        d.set_item("densities", PyArray1::from_vec(py, c.densities))?;
+        d.set_item("ids", PyArray1::from_vec(py, c.ids))?;
+        d.set_item("kinds", PyArray1::from_vec(py, c.kinds))?;
+        d.set_item("velocities_prev", PyArray1::from_vec(py, c.velocities_prev))?;
+        d.set_item("densities_prev", PyArray1::from_vec(py, c.densities_prev))?;
+        d.set_item("n_excluded", c.n_excluded)?;
+        d.set_item("energy0", (c.energy0.0, c.energy0.1))?;
+        let gauges = PyList::empty(py);
+        for g in &c.gauges {
+            let gd = PyDict::new(py);
+            gd.set_item("t", PyArray1::from_slice(py, &g.t))?;
+            gd.set_item("values", PyArray1::from_slice(py, &g.values))?;
+            gd.set_item("next_time", g.next_time)?;
+            gauges.append(gd)?;
+        }
+        d.set_item("gauges", gauges)?;
+        Ok(d)
+    }
+
+    /// Continues from `checkpoint()` of a run of the same scene.
+    fn restore(&mut self, py: Python<'_>, checkpoint: &Bound<'_, PyDict>) -> PyResult<()> {
+        fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+            let v = d.get_item(key)?.ok_or_else(|| SceneError::new_err(format!("checkpoint.{key}: missing")))?;
+            v.extract::<T>().map_err(Into::into).map_err(|e: PyErr| SceneError::new_err(format!("checkpoint.{key}: {e}")))
+        }
+        let mut c = self.inner.checkpoint();
+        c.time = item(checkpoint, "time")?;
+        c.steps = item(checkpoint, "steps")?;
+        c.dt = item(checkpoint, "dt")?;
+        c.positions = item(checkpoint, "positions")?;
+        c.velocities = item(checkpoint, "velocities")?;
+        c.densities = item(checkpoint, "densities")?;
+        c.ids = item(checkpoint, "ids")?;
+        c.kinds = item(checkpoint, "kinds")?;
+        c.velocities_prev = item(checkpoint, "velocities_prev")?;
+        c.densities_prev = item(checkpoint, "densities_prev")?;
+        c.n_excluded = item(checkpoint, "n_excluded")?;
+        c.energy0 = item(checkpoint, "energy0")?;
+        let gauges: Vec<Bound<'_, PyDict>> = item(checkpoint, "gauges")?;
+        if gauges.len() != c.gauges.len() {
+            return Err(SceneError::new_err(format!(
+                "checkpoint.gauges: has {} gauges, this scene has {}",
+                gauges.len(),
+                c.gauges.len()
+            )));
+        }
+        for (rec, gd) in c.gauges.iter_mut().zip(&gauges) {
+            rec.t = item(gd, "t")?;
+            rec.values = item(gd, "values")?;
+            rec.next_time = item(gd, "next_time")?;
+        }
+        self.inner.restore(&c).map_err(|e| to_py_err(py, e))
     }
 
     fn __repr__(&self) -> String {

@@ -11,6 +11,7 @@ use super::{Constants, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL,
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
+use crate::particles::KIND_EXCLUDED;
 
 /// Calls `f(b, r_ab, r_ab^2, F(|r_ab|))` for every particle `b != a` of `group` inside the kernel
 /// support of the point `pa`, in the grid's fixed order.
@@ -39,6 +40,8 @@ pub struct Fields<'a, D: Dim> {
     pub pos: &'a [D::V],
     pub vel: &'a [D::V],
     pub rho: &'a [Real],
+    /// Particle kinds (excluded fluid particles are skipped).
+    pub kind: &'a [u8],
     /// `P / rho^2` per particle.
     pub p_rho2: &'a [Real],
     /// SPS stress `tau / rho^2` per fluid particle (indexed from the first fluid particle); empty
@@ -94,6 +97,11 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
         .enumerate()
         .map(|(i, (acc_a, drho_a))| {
             let a = f.fluid_start + i;
+            if f.kind[a] == KIND_EXCLUDED {
+                *acc_a = D::V::ZERO;
+                *drho_a = 0.0;
+                return StepLimits::NONE;
+            }
             let (pa, va, rhoa) = (f.pos[a], f.vel[a], f.rho[a]);
             let pa_rho2 = f.p_rho2[a];
             let ca = sound_speed(c, rhoa);
