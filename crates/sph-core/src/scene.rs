@@ -156,6 +156,11 @@ pub struct Scene {
     /// value by more than this fraction of the initial potential energy above the tank floor.
     #[serde(default = "default_energy_growth_limit")]
     pub energy_growth_limit: Real,
+    /// Memory the run may use [bytes]; default: 80 % of the machine's available memory
+    /// (`MemAvailable` of /proc/meminfo; no check where that is unknown). A scene whose
+    /// estimated particle arrays exceed it is refused before anything is allocated.
+    #[serde(default)]
+    pub memory_limit_bytes: Option<u64>,
     /// Wave-maker paddle; none for tanks and dam breaks.
     #[serde(default)]
     pub paddle: Option<Paddle>,
@@ -385,6 +390,7 @@ impl Scene {
             }
         }
         self.validate_flume()?;
+        self.validate_memory()?;
         for k in 0..dim {
             let extent = self.tank.max[k] - self.tank.min[k];
             if extent < 2.0 * self.dp {
@@ -403,6 +409,40 @@ impl Scene {
     pub fn still_water_level(&self) -> Real {
         let up = self.dim - 1;
         self.fluid.iter().map(|b| b.max[up]).fold(Real::NEG_INFINITY, Real::max)
+    }
+
+    /// Estimated particle count: fluid boxes plus a wall shell `layers` thick around the tank.
+    pub fn estimated_particles(&self) -> f64 {
+        let dim = self.dim;
+        let cell = self.dp.powi(dim as i32);
+        let fluid: f64 = self.fluid.iter().map(|b| (0..dim).map(|k| b.max[k] - b.min[k]).product::<f64>()).sum();
+        let t = self.layers() as f64 * self.dp;
+        let outer: f64 = (0..dim)
+            .map(|k| self.tank.max[k] - self.tank.min[k] + if k == dim - 1 { t } else { 2.0 * t })
+            .product();
+        let inner: f64 = (0..dim).map(|k| self.tank.max[k] - self.tank.min[k]).product();
+        (fluid + (outer - inner)) / cell
+    }
+
+    /// Refuses a resolution whose arrays would not fit in memory (an estimate: about
+    /// `48 dim + 100` bytes per particle, see docs/physics-options.md).
+    fn validate_memory(&self) -> Result<()> {
+        let Some(limit) = self.memory_limit_bytes.or_else(available_memory_bytes) else { return Ok(()) };
+        let particles = self.estimated_particles();
+        let bytes = particles * (48.0 * self.dim as f64 + 100.0);
+        if !(bytes <= limit as f64) {
+            return Err(Error::invalid(
+                "dp",
+                format!(
+                    "dp = {} needs about {:.3e} particles and {:.2} GiB, more than the {:.2} GiB allowed; use a larger dp",
+                    self.dp,
+                    particles,
+                    bytes / 1024f64.powi(3),
+                    limit as f64 / 1024f64.powi(3)
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Paddle, damping zone and gauges.
@@ -472,6 +512,14 @@ impl Scene {
     }
 }
 
+/// 80 % of `MemAvailable` from /proc/meminfo, if readable.
+fn available_memory_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024 / 10 * 8)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -499,6 +547,7 @@ mod tests {
             (dambreak_json(r#", "viscosity": {"model": "artificial", "alpha": -0.1}"#), "viscosity.alpha"),
             (dambreak_json(r#", "viscosity": {"model": "magic"}"#), "viscosity"),
             (dambreak_json(r#", "bogus": 1"#), "bogus"),
+            (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
             (dambreak_json(r#", "obstacles": [{"shape": "plane", "point": [0, 0], "normal": [0, 0]}]"#), "obstacles[0].normal"),
             (r#"{"dim": 2, "dp": 0.0, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [1, 2]}]}"#.to_string(), "dp"),
             (r#"{"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [5, 2]}]}"#.to_string(), "fluid[0]"),
