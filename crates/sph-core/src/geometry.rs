@@ -31,6 +31,7 @@ enum Solid<D: Dim> {
     Plane { point: D::V, normal: D::V },
     /// Bed polyline in the x-z plane (vertices in order of increasing x).
     Profile { x: Vec<Real>, z: Vec<Real>, line: parry2d_f64::shape::Polyline },
+    Mesh(Box<D::Mesh>),
 }
 
 impl<D: Dim> Solid<D> {
@@ -40,6 +41,7 @@ impl<D: Dim> Solid<D> {
             Solid::Box { min, max } => D::box_signed_distance(*min, *max, p),
             Solid::Plane { point, normal } => D::plane_signed_distance(*point, *normal, p),
             Solid::Profile { x, z, line } => profile_signed_distance(x, z, line, p.get(0), p.vertical()),
+            Solid::Mesh(mesh) => D::mesh_signed_distance(mesh, p),
         }
     }
 }
@@ -73,18 +75,24 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
     let solids: Vec<Solid<D>> = scene
         .obstacles
         .iter()
-        .map(|o| match o {
-            Obstacle::Box { min, max } => Solid::Box { min: D::V::from_slice(min), max: D::V::from_slice(max) },
-            Obstacle::Profile { x, z } => {
-                let vertices = x.iter().zip(z).map(|(&a, &b)| glam::DVec2::new(a, b)).collect();
-                Solid::Profile { x: x.clone(), z: z.clone(), line: parry2d_f64::shape::Polyline::new(vertices, None) }
-            }
-            Obstacle::Plane { point, normal } => {
-                let n = D::V::from_slice(normal);
-                Solid::Plane { point: D::V::from_slice(point), normal: n * (1.0 / n.length()) }
-            }
+        .enumerate()
+        .map(|(i, o)| -> Result<Solid<D>> {
+            Ok(match o {
+                Obstacle::Box { min, max } => Solid::Box { min: D::V::from_slice(min), max: D::V::from_slice(max) },
+                Obstacle::Profile { x, z } => {
+                    let vertices = x.iter().zip(z).map(|(&a, &b)| glam::DVec2::new(a, b)).collect();
+                    Solid::Profile { x: x.clone(), z: z.clone(), line: parry2d_f64::shape::Polyline::new(vertices, None) }
+                }
+                Obstacle::Mesh { vertices, triangles } => {
+                    Solid::Mesh(Box::new(D::mesh(vertices, triangles).map_err(|e| Error::invalid(format!("obstacles[{i}]"), e))?))
+                }
+                Obstacle::Plane { point, normal } => {
+                    let n = D::V::from_slice(normal);
+                    Solid::Plane { point: D::V::from_slice(point), normal: n * (1.0 / n.length()) }
+                }
+            })
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let fluid_boxes: Vec<(D::V, D::V)> =
         scene.fluid.iter().map(|b| (D::V::from_slice(&b.min), D::V::from_slice(&b.max))).collect();
 
@@ -294,6 +302,37 @@ mod tests {
                 "fluid": [{"min": [0, 0], "max": [20, 0.4]}]}"#
         )
         .is_err());
+    }
+
+    #[test]
+    fn mesh_obstacle_removes_its_volume() {
+        // a closed, outward-oriented box 0.4 x 0.5 x 0.2 m standing on the floor, as triangles
+        let (x0, x1, y0, y1, z0, z1) = (0.3, 0.7, 0.0, 0.5, 0.0, 0.2);
+        let v = [
+            [x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0],
+            [x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1],
+        ];
+        let t: [[u32; 3]; 12] = [
+            [0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+            [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7],
+        ];
+        let json = format!(
+            r#"{{"dim": 3, "dp": 0.05, "tank": {{"min": [0, 0, 0], "max": [1, 0.5, 0.6]}},
+                "obstacles": [{{"shape": "mesh", "vertices": {v:?}, "triangles": {t:?}}}],
+                "fluid": [{{"min": [0, 0, 0], "max": [1, 0.5, 0.4]}}]}}"#
+        );
+        let with = sample::<Dim3>(&scene(&json)).expect("sampled");
+        let without = sample::<Dim3>(&scene(
+            r#"{"dim": 3, "dp": 0.05, "tank": {"min": [0, 0, 0], "max": [1, 0.5, 0.6]},
+                "fluid": [{"min": [0, 0, 0], "max": [1, 0.5, 0.4]}]}"#,
+        ))
+        .expect("sampled");
+        let removed = (without.fluid.len() - with.fluid.len()) as f64 * 0.05f64.powi(3);
+        // faces on lattice mid-planes: exactly the box's 0.04 m^3 goes, the nearest fluid sits dp/2 off
+        assert!((removed - 0.04).abs() < 1e-9, "removed {removed}");
+        assert!(with.walls.len() > without.walls.len());
+        let flat = json.replace(r#""dim": 3"#, r#""dim": 2"#);
+        assert!(Scene::from_json(&flat).is_err());
     }
 
     #[test]

@@ -126,6 +126,13 @@ pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
     /// Signed distance from `p` to the surface of the axis-aligned box `[min, max]`
     /// (negative inside), by parry's point projection.
     fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real;
+    /// A closed, outward-oriented triangle mesh (3D only).
+    type Mesh: Send + Sync;
+    /// Builds a mesh from vertices (`DIM` values each) and triangles; the error says why not.
+    fn mesh(vertices: &[Vec<Real>], triangles: &[[u32; 3]]) -> std::result::Result<Self::Mesh, String>;
+    /// Signed distance from `p` to the mesh surface, negative inside (parry's pseudo-normal test).
+    fn mesh_signed_distance(mesh: &Self::Mesh, p: Self::V) -> Real;
+
     /// Signed distance from `p` to the plane through `point` with unit `normal`
     /// (positive on the normal's side), by parry's half-space projection.
     fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real;
@@ -171,6 +178,14 @@ impl Dim for Dim2 {
     type V = DVec2;
     /// xx, yy, xy
     type Sym = [Real; 3];
+    type Mesh = ();
+
+    fn mesh(_: &[Vec<Real>], _: &[[u32; 3]]) -> std::result::Result<(), String> {
+        Err("a triangle mesh needs dim = 3".to_string())
+    }
+    fn mesh_signed_distance(_: &(), _: DVec2) -> Real {
+        Real::INFINITY
+    }
 
     #[inline(always)]
     fn sym_add_outer(s: &mut Self::Sym, a: DVec2, b: DVec2, w: Real) {
@@ -199,6 +214,25 @@ impl Dim for Dim3 {
     type V = DVec3;
     /// xx, yy, zz, xy, xz, yz
     type Sym = [Real; 6];
+    type Mesh = parry3d_f64::shape::TriMesh;
+
+    fn mesh(vertices: &[Vec<Real>], triangles: &[[u32; 3]]) -> std::result::Result<Self::Mesh, String> {
+        use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+        let v: Vec<DVec3> = vertices.iter().map(|p| DVec3::from_slice(p)).collect();
+        let flags = TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES;
+        TriMesh::with_flags(v, triangles.to_vec(), flags).map_err(|e| format!("not a usable triangle mesh: {e:?}"))
+    }
+    fn mesh_signed_distance(mesh: &Self::Mesh, p: DVec3) -> Real {
+        use parry3d_f64::query::PointQuery;
+        // the pseudo-normal projection gives the nearest surface point and a reliable inside flag
+        let (proj, _) = mesh.project_local_point_and_get_feature(p);
+        let d = (proj.point - p).length();
+        if proj.is_inside {
+            -d
+        } else {
+            d
+        }
+    }
 
     #[inline(always)]
     fn sym_add_outer(s: &mut Self::Sym, a: DVec3, b: DVec3, w: Real) {

@@ -149,7 +149,7 @@ impl GaugeSpec {
             GaugeSpec::Window { min, max, n, .. } => {
                 check_point(format!("{field}.min"), min, false)?;
                 check_point(format!("{field}.max"), max, false)?;
-                if n.len() != dim || n.iter().any(|&k| k == 0) {
+                if n.len() != dim || n.contains(&0) {
                     return Err(Error::invalid(format!("{field}.n"), format!("needs {dim} counts >= 1, got {n:?}")));
                 }
                 if n.iter().product::<usize>() > 1_000_000 {

@@ -81,6 +81,9 @@ pub enum Obstacle {
     /// Piecewise-linear bed: solid below the polyline through `(x[i], z[i])` (extruded across
     /// the width in 3D), between `x[0]` and the last `x`. Bars, beaches, measured bathymetry.
     Profile { x: Vec<Real>, z: Vec<Real> },
+    /// A closed triangle mesh with outward-facing triangles (3D only): bathymetry or structures
+    /// from an STL file (read in Python). Vertices are `[x, y, z]`; triangles index them.
+    Mesh { vertices: Vec<Vec<Real>>, triangles: Vec<[u32; 3]> },
 }
 
 /// Velocity damping zone at the far end of a flume (DualSPHysics' damping zone form):
@@ -336,6 +339,23 @@ impl Scene {
             match o {
                 Obstacle::Box { min, max } => {
                     check_box(&f, &BoxSpec { min: min.clone(), max: max.clone() }, dim)?
+                }
+                Obstacle::Mesh { vertices, triangles } => {
+                    if dim != 3 {
+                        return Err(Error::invalid(f, "a triangle mesh needs dim = 3"));
+                    }
+                    if triangles.is_empty() {
+                        return Err(Error::invalid(format!("{f}.triangles"), "needs at least one triangle"));
+                    }
+                    for (j, v) in vertices.iter().enumerate() {
+                        check_vector(&format!("{f}.vertices[{j}]"), v, 3)?;
+                    }
+                    if let Some((j, t)) = triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= vertices.len())) {
+                        return Err(Error::invalid(
+                            format!("{f}.triangles[{j}]"),
+                            format!("{t:?} indexes past the {} vertices", vertices.len()),
+                        ));
+                    }
                 }
                 Obstacle::Profile { x, z } => {
                     if x.len() != z.len() || x.len() < 2 {
