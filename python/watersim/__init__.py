@@ -4,6 +4,11 @@ Public names:
 
 - :class:`Simulation`: a running simulation (wrapper of the core's).
 - :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
+- :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`DampingZone`): the wave
+  flume; :meth:`Flume.simulation` takes a wave (:class:`RegularWave`, :class:`IrregularWave`,
+  :class:`SolitaryWave`, :class:`TabulatedMotion`), a paddle (:class:`Piston`, :class:`Flap`)
+  and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`, :class:`VelocityWindow`,
+  :class:`RunupGauge`) and gives a :class:`FlumeSimulation`.
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
 - :func:`front_position`: dam-break surge front from fluid positions.
@@ -17,6 +22,26 @@ from importlib.metadata import PackageNotFoundError, version
 from . import analysis, wave_theory
 from ._core import InstabilityError, SceneError
 from .checkpoint import load_checkpoint, save_checkpoint
+from .flume import (
+    DampingZone,
+    ElevationGauge,
+    Flap,
+    Flume,
+    FlumeGauges,
+    FlumeScene,
+    FlumeSimulation,
+    IrregularWave,
+    Piston,
+    PlaneBeach,
+    ProfileBeach,
+    RegularWave,
+    RunupGauge,
+    SolitaryWave,
+    TabulatedMotion,
+    VelocityProbe,
+    VelocityWindow,
+    elevation_gauges_between,
+)
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
@@ -28,13 +53,31 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree wi
 
 __all__ = [
     "DamBreak",
+    "DampingZone",
+    "ElevationGauge",
+    "Flap",
+    "Flume",
+    "FlumeGauges",
+    "FlumeScene",
+    "FlumeSimulation",
     "InstabilityError",
+    "IrregularWave",
+    "Piston",
+    "PlaneBeach",
+    "ProfileBeach",
+    "RegularWave",
+    "RunupGauge",
     "SceneBuilder",
     "SceneError",
     "Simulation",
+    "SolitaryWave",
+    "TabulatedMotion",
     "Tank",
+    "VelocityProbe",
+    "VelocityWindow",
     "__version__",
     "analysis",
+    "elevation_gauges_between",
     "front_error",
     "front_position",
     "load_checkpoint",

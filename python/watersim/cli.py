@@ -10,6 +10,12 @@ CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set``
 field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
 exits with code 2 and a one-line message naming the field; a run stopped by a stability monitor
 writes what it has and exits with code 1.
+
+The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``solitary2d`` and
+``flume3d`` (:mod:`watersim.flume_cases`) take the numerical parameters and dotted keys of their
+objects (``--set wave.height=0.06 --set paddle.order=1 --set beach.slope=0.05``) and write
+``summary.json``, ``gauges.csv`` (rewritten as the run goes, so an unstable run keeps its
+records) and ``analysis.json``.
 """
 
 from __future__ import annotations
@@ -23,17 +29,27 @@ import sys
 import time
 import types
 import typing
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
 from . import __version__
 from ._core import InstabilityError, SceneError
+from .flume import FlumeScene, FlumeSimulation
+from .flume_cases import (
+    FLUME_CASES,
+    FlumeCaseError,
+    case_extras,
+    flume_builder,
+    flume_settable_keys,
+    headline,
+)
 from .measure import front_error, front_position, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
-__all__ = ["CASES", "main"]
+__all__ = ["ALL_CASES", "CASES", "main"]
 
 CASES: dict[str, tuple[type[SceneBuilder], dict[str, Any]]] = {
     "dambreak2d": (DamBreak, {"dim": 2}),
@@ -42,6 +58,9 @@ CASES: dict[str, tuple[type[SceneBuilder], dict[str, Any]]] = {
     "tank3d": (Tank, {"dim": 3}),
 }
 """Built-in cases: builder class and the fields the case fixes."""
+
+ALL_CASES: tuple[str, ...] = (*CASES, *FLUME_CASES)
+"""Every case ``watersim run`` knows: the verification cases, then the wave-flume cases."""
 
 BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d")
 
@@ -73,6 +92,8 @@ def rayon_threads() -> int:
 
 def settable_keys(case: str) -> list[str]:
     """Fields of ``case`` that ``--set`` may change (all but those the case fixes)."""
+    if case in FLUME_CASES:
+        return flume_settable_keys(case)
     cls, fixed = CASES[case]
     skip = set(fixed)
     if fixed.get("dim") == 2:
@@ -111,8 +132,10 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
         CliError: unknown case or key, or a value of the wrong type.
         SceneError: a value the builder refuses.
     """
+    if case in FLUME_CASES:
+        return _flume_builder_from_args(case, settings)
     if case not in CASES:
-        raise CliError(f"case: unknown case {case!r}; valid cases: {', '.join(CASES)}")
+        raise CliError(f"case: unknown case {case!r}; valid cases: {', '.join(ALL_CASES)}")
     cls, fixed = CASES[case]
     valid = settable_keys(case)
     overrides: dict[str, Any] = {}
@@ -126,6 +149,21 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
             raise CliError(f"--set: key {key!r} {why}; valid keys: {', '.join(valid)}")
         overrides[key] = _parse_value(cls, key, text)
     return cls(**fixed, **overrides)
+
+
+def _flume_builder_from_args(case: str, settings: Sequence[str]) -> FlumeScene:
+    """A flume case's scene (:mod:`watersim.flume_cases`) with ``key=value`` overrides."""
+    items: dict[str, str] = {}
+    for item in settings:
+        key, sep, text = item.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise CliError(f"--set: expected key=value, got {item!r}")
+        items[key] = text
+    try:
+        return flume_builder(case, items)
+    except FlumeCaseError as exc:
+        raise CliError(str(exc)) from None
 
 
 def _jsonable(value: Any) -> Any:
@@ -218,7 +256,11 @@ class _Recorder:
 
 def cmd_run(args: argparse.Namespace) -> int:
     """``watersim run``: run a case, write summary.json (and front.csv for dam breaks)."""
+    if args.case in FLUME_CASES:
+        return _run_flume(args)
     builder = builder_from_args(args.case, args.set or [])
+    if args.sample_every is None:
+        args.sample_every = 0.01
     if not (args.sample_every > 0.0 and math.isfinite(args.sample_every)):
         raise CliError(f"--sample-every: must be a positive number, got {args.sample_every!r}")
     out = Path(args.out if args.out is not None else Path("runs") / args.case)
@@ -293,6 +335,103 @@ def cmd_run(args: argparse.Namespace) -> int:
             f"{100 * mm['rms_rel_error']:.1f} % over {mm['n_points']} points; "
             f"mean time lead of the simulation {lead_text}"
         )
+    say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
+    if error is not None:
+        print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
+        return 130 if status == "interrupted" else 1
+    return 0
+
+
+def _run_flume(args: argparse.Namespace) -> int:
+    """``watersim run`` for a wave-flume case: summary.json, gauges.csv, analysis.json."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        builder = builder_from_args(args.case, args.set or [])
+    assert isinstance(builder, FlumeScene)
+    say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
+    notes = [f"{w.category.__name__}: {w.message}" for w in caught]
+    for note in notes:
+        print(f"watersim: warning: {note}", file=sys.stderr)
+    until = float(builder.until)  # type: ignore[arg-type]
+    every = args.sample_every if args.sample_every is not None else max(until / 20.0, 1e-6)
+    if not (every > 0.0 and math.isfinite(every)):
+        raise CliError(f"--sample-every: must be a positive number, got {every!r}")
+    out = Path(args.out if args.out is not None else Path("runs") / args.case)
+    out.mkdir(parents=True, exist_ok=True)
+    sim = builder.build()
+    threads = rayon_threads()
+    say(
+        f"watersim {__version__}: {args.case}, {sim.n_particles} particles "
+        f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
+    )
+    csv_path = out / "gauges.csv"
+    t_start = time.perf_counter()
+    next_report = [0.0]
+
+    def on_sample(s: Simulation) -> None:
+        assert isinstance(s, FlumeSimulation)
+        s.write_gauges_csv(csv_path)  # records so far survive a crash or an instability
+        if s.time >= next_report[0]:
+            say(f"  t = {s.time:.3f} s, {s.steps} steps, dt = {s.dt:.3g} s, "
+                f"wall {time.perf_counter() - t_start:.1f} s")
+            while next_report[0] <= s.time:
+                next_report[0] += until / 10.0
+
+    status = "ok"
+    error: dict[str, Any] | None = None
+    try:
+        sim.run(until, callback_every=every, callback=on_sample)
+    except InstabilityError as exc:
+        status = str(getattr(exc, "kind", "") or "unstable")
+        error = _error_record(exc)
+    except KeyboardInterrupt as exc:
+        status = "interrupted"
+        error = _error_record(exc)
+    except RuntimeError as exc:
+        status = "error"
+        error = _error_record(exc)
+    finally:
+        sim.write_gauges_csv(csv_path)
+    wall = time.perf_counter() - t_start
+
+    analysis: dict[str, Any]
+    try:
+        analysis = sim.analyse()
+        analysis.update(case_extras(args.case, builder, analysis))
+    except Exception as exc:  # noqa: BLE001 - the analysis must not lose the run's outputs
+        analysis = {"error": _error_record(exc)}
+    analysis["case"] = args.case
+    analysis["status"] = status
+    _write_json(out / "analysis.json", analysis)
+
+    summary: dict[str, Any] = {
+        "case": args.case,
+        "status": status,
+        "dim": sim.dim,
+        "n_particles": sim.n_particles,
+        "n_fluid": sim.n_fluid,
+        "n_boundary": sim.n_boundary,
+        "steps": sim.steps,
+        "sim_time": sim.time,
+        "until": until,
+        "wall_s": wall,
+        "threads": threads,
+        "state_sha256": sim.state_sha256(),
+        "memory_bytes": sim.memory_bytes(),
+        "version": __version__,
+        "gauges_csv": "gauges.csv",
+        "analysis_json": "analysis.json",
+        "n_gauge_samples": int(sim.gauges.t.size),
+        "warnings": notes,
+        "builder": builder.as_dict(),
+        "scene": sim.scene,
+        "params": sim.params(),
+    }
+    if error is not None:
+        summary["error"] = error
+    _write_json(out / "summary.json", summary)
+    for line in headline(args.case, analysis):
+        say(line)
     say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
     if error is not None:
         print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
@@ -416,15 +555,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     set_help = "override a case parameter (repeatable), e.g. --set dp=0.04"
     run = sub.add_parser("run", help="run a built-in case and write summary.json")
-    run.add_argument("case", metavar="CASE", help=f"one of: {', '.join(CASES)}")
+    run.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
     run.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     run.add_argument("--out", metavar="DIR", help="output folder (default: runs/CASE)")
     run.add_argument(
         "--sample-every",
         type=float,
-        default=0.01,
+        default=None,
         metavar="S",
-        help="front sampling interval in simulated seconds (default 0.01)",
+        help="dam breaks: front sampling interval in simulated seconds (default 0.01); "
+        "flume cases: how often gauges.csv is rewritten (default until/20)",
     )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
     run.set_defaults(func=cmd_run)
@@ -445,7 +585,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench.set_defaults(func=cmd_bench)
 
     scene = sub.add_parser("scene", help="print a case's scene JSON and derived parameters")
-    scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(CASES)}")
+    scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
     scene.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     scene.set_defaults(func=cmd_scene)
     return parser

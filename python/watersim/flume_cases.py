@@ -1,0 +1,532 @@
+"""Built-in wave-flume cases of ``watersim run``: flume2d, kimmoun2d, stansby2d, bar2d,
+solitary2d and flume3d.
+
+Each case is a function of the ``--set`` values that returns a checked
+:class:`~watersim.flume.FlumeScene`. Keys are the numerical parameters of
+:class:`~watersim.SceneBuilder` (``dp``, ``until``, ``coefsound``, ``alpha``, ...), plus
+``sample_interval``, plus dotted keys for the case's objects: ``wave.height``, ``wave.period``,
+``paddle.order``, ``paddle.ramp_periods``, ``flume.length``, ``flume.depth``, ``beach.toe``,
+``beach.slope``, ``damping.length``, ... (``watersim run CASE --set bogus=1`` lists them). Gauge
+positions that follow from the wave (flume2d, flume3d) are recomputed from the values set.
+
+The defaults are coarse on purpose: each case runs in a few minutes on two cores (see
+:data:`FLUME_CASES` for each one's cost). They use ``coefsound = 10`` (``c0 = 10 sqrt(g d)`` at
+the paddle depth d: ten times the shallow-water wave speed, density variations about 1 % of
+rho0; Monaghan's rule c0 >= 10 |v|max holds for non-breaking waves and, from the deeper paddle
+depth, for the breakers of kimmoun2d and stansby2d too), which halves the number of steps
+against the library default of 20. Refine with ``--set dp=...`` (and ``coefsound=20``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import types
+import typing
+import warnings
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from importlib import resources
+from typing import Any, TypeVar
+
+import numpy as np
+
+from . import analysis as an
+from . import wave_theory as wt
+from .flume import (
+    DampingZone,
+    ElevationGauge,
+    Flume,
+    FlumeScene,
+    Piston,
+    PlaneBeach,
+    ProfileBeach,
+    RegularWave,
+    SolitaryWave,
+    elevation_gauges_between,
+)
+from .scenes import SceneBuilder, _positive
+
+__all__ = [
+    "BEJI_BATTJES_GAUGES",
+    "FLUME_CASES",
+    "STANSBY_GAUGES",
+    "FlumeCase",
+    "FlumeCaseError",
+    "beji_battjes_harmonics",
+    "flume_builder",
+    "flume_settable_keys",
+]
+
+T = TypeVar("T")
+
+STANSBY_GAUGES: tuple[float, ...] = (
+    1.1, 2.4, 3.4, 3.9, 4.4, 4.9, 5.3, 5.54, 5.6, 5.74, 5.88, 5.96,
+    7.2, 7.6, 6.18, 6.2, 6.26, 6.34, 6.42, 6.6, 6.8, 7.1, 7.2, 7.6,
+)
+"""Gauge x [m] of Stansby & Feng (2005), gauges 1-24, as printed in seed 002's Table 2 (gauges 13
+and 14 repeat the positions of 23 and 24, 7.2 and 7.6 m: kept as printed, so those columns come
+twice, the second with a ``_2`` suffix)."""
+
+BEJI_BATTJES_GAUGES: tuple[float, ...] = (2.0, 4.0, 5.2, 10.5, 12.5, 13.5, 14.5, 15.7, 17.3, 19.0,
+                                          21.0)
+"""Gauge x [m] of the Beji & Battjes (1993) records shipped in ``watersim/data`` (waves2Foam's
+a02 ... a21; ``shared/validation/SOURCES.md`` section 9)."""
+
+BEJI_BATTJES_FILES: dict[float, str] = {
+    x: f"beji_battjes1993_a{n:02d}_x{x:.1f}m_waves2foam.csv"
+    for n, x in zip((2, 4, 5, 10, 12, 13, 14, 15, 17, 19, 21), BEJI_BATTJES_GAUGES, strict=True)
+}
+
+
+class FlumeCaseError(Exception):
+    """A bad ``--set`` key or value for a flume case (the CLI prints it, exit code 2)."""
+
+
+# ------------------------------------------------------------------------------------------------
+# --set handling
+
+
+def _parse(hint: Any, key: str, text: str) -> Any:
+    """``text`` converted to the type ``hint`` (float, int, bool, str, or optional of those)."""
+    optional = False
+    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        optional = len(args) < len(typing.get_args(hint))
+        hint = args[0]
+    value = text.strip()
+    if optional and value.lower() in ("none", "null", "auto"):
+        return None
+    if hint is bool:
+        if value.lower() in ("1", "true", "yes", "on"):
+            return True
+        if value.lower() in ("0", "false", "no", "off"):
+            return False
+        raise FlumeCaseError(f"{key}: expected true or false, got {text!r}")
+    if hint is float:
+        try:
+            return float(value)
+        except ValueError:
+            raise FlumeCaseError(f"{key}: expected a number, got {text!r}") from None
+    if hint is int:
+        try:
+            return int(value)
+        except ValueError:
+            raise FlumeCaseError(f"{key}: expected an integer, got {text!r}") from None
+    return value
+
+
+def _scalar(hint: Any) -> bool:
+    """Whether a field of this type can be set from one ``--set`` value."""
+    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        return len(args) == 1 and _scalar(args[0])
+    return hint in (float, int, bool, str)
+
+
+class _Settings:
+    """The ``--set`` values of one run, handed out to the case's objects.
+
+    Every key a case offers is recorded in :attr:`keys`, whether or not it was set, so that the
+    same case function lists its keys (run once with no values) and applies them.
+    """
+
+    def __init__(self, items: Mapping[str, str]) -> None:
+        self.items = dict(items)
+        self.used: set[str] = set()
+        self.keys: list[str] = []
+
+    def apply(self, prefix: str, obj: T, skip: tuple[str, ...] = ()) -> T:
+        """``obj`` (a dataclass) with its ``prefix.field`` values applied (checked again)."""
+        hints = typing.get_type_hints(type(obj))
+        changes: dict[str, Any] = {}
+        for f in dataclasses.fields(obj):  # type: ignore[arg-type]
+            if f.name in skip or not f.init or not _scalar(hints[f.name]):
+                continue
+            key = f"{prefix}.{f.name}"
+            self.keys.append(key)
+            if key in self.items:
+                changes[f.name] = _parse(hints[f.name], key, self.items[key])
+                self.used.add(key)
+        return dataclasses.replace(obj, **changes) if changes else obj  # type: ignore[type-var]
+
+    def value(self, key: str, default: Any, hint: Any = float) -> Any:
+        """A single case parameter ``key`` (default ``default``); a float must be positive."""
+        self.keys.append(key)
+        if key not in self.items:
+            return default
+        self.used.add(key)
+        value = _parse(hint, key, self.items[key])
+        if hint is float:
+            _positive(key, value)
+        return value
+
+    def numerics(self, **defaults: Any) -> dict[str, Any]:
+        """The numerical parameters (:class:`~watersim.SceneBuilder` fields and
+        ``sample_interval``): the case's ``defaults`` with the values set applied."""
+        hints = typing.get_type_hints(FlumeScene)
+        out = dict(defaults)
+        for name in (*SceneBuilder.field_names(), "sample_interval"):
+            if name == "dim":
+                continue
+            self.keys.append(name)
+            if name in self.items:
+                out[name] = _parse(hints[name], name, self.items[name])
+                self.used.add(name)
+        return out
+
+    def was_set(self, key: str) -> bool:
+        return key in self.items
+
+
+def _quiet_scene(**kwargs: Any) -> FlumeScene:
+    """A FlumeScene built without emitting wave-validity warnings (for sizing a case)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return FlumeScene(**kwargs)
+
+
+def _finish(
+    s: _Settings, n_periods: float | None, x_far: float | None, **kwargs: Any
+) -> FlumeScene:
+    """The case's scene; ``until`` (unless set) = ramp + arrival at ``x_far`` + ``n_periods``."""
+    if n_periods is not None and x_far is not None and not s.was_set("until"):
+        probe = _quiet_scene(**{**kwargs, "until": 1.0})
+        assert probe.period is not None
+        until = probe.law.ramp_duration + probe.arrival_time(x_far) + n_periods * probe.period
+        kwargs["until"] = round(until, 2)
+    return FlumeScene(**kwargs)
+
+
+# ------------------------------------------------------------------------------------------------
+# the cases
+
+
+def _reflection_triplet(x0: float, wavelength: float) -> list[ElevationGauge]:
+    """Three gauges for Mansard & Funke (1980): spacings L/10 and L/4 from ``x0`` (their advice:
+    x12 ~ L/10, L/6 < x13 < L/3)."""
+    return [ElevationGauge(round(x0 + f * wavelength, 3)) for f in (0.0, 0.1, 0.25)]
+
+
+def case_flume2d(s: _Settings) -> FlumeScene:
+    """Flat 2D flume with a damping zone; regular wave; gauges at 1, 2 and 3 wavelengths.
+
+    d = 0.3 m, T = 1.2 s (L = 1.77 m, kd = 1.06), H = 0.05 m, second-order piston with a
+    two-period ramp; flume 4.75 L long with a 1.5 L damping zone; gauges at 1, 2 and 3 L plus a
+    Mansard-Funke triplet from 1.5 L for the reflection coefficient. dp = 0.025 m (H/dp = 2,
+    about 5,000 particles), until = ramp + arrival at 3 L + 4 periods (about 12 s).
+    """
+    wave = s.apply("wave", RegularWave(height=0.05, period=1.2))
+    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    depth = s.value("flume.depth", 0.3)
+    wl = float(wt.wavelength(wave.period, depth))
+    length = s.value("flume.length", round(4.75 * wl, 2))
+    damping = s.apply("damping", DampingZone(length=round(1.5 * wl, 2)))
+    flume = Flume(length=length, depth=depth, damping=damping)
+    gauges = [ElevationGauge(round(n * wl, 3)) for n in (1, 2, 3)]
+    gauges += _reflection_triplet(1.5 * wl, wl)
+    num = s.numerics(dp=0.025, coefsound=10.0)
+    return _finish(s, 4.0, 3.0 * wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
+
+
+def case_kimmoun2d(s: _Settings) -> FlumeScene:
+    """Seed 001 (Roselli et al.; Kimmoun & Branger 2007): regular waves plunging on a 1:15 beach.
+
+    Flume 17 m, d = 0.705 m, plane 1:15 beach from x = 4 m (shoreline at 14.575 m), T =
+    1.275 s, amplitude a = 5.70 cm observed before the slope, so H = 2a = 0.114 m (second-order
+    piston, two-period ramp). Gauges: x = 4.0 m (the toe, seed Fig. 4); 12.095, 13.155 and
+    14.155 m (seed Fig. 5: 248, 142 and 42 cm before the shoreline: incipient breaking,
+    splash-up, roller); a line every 0.5 m from 8 to 14.5 m for the envelopes and the breaking
+    position; a Mansard-Funke triplet from 1.5 m; and the run-up gauge on the slope. The
+    elevation gauges use seed 001's method (the highest particle). The six gauges 18 cm apart
+    of the experiment are not placed: the seed does not give where they were. dp = 0.05 m (H/dp = 2.3, about 4,500 particles), until = 20 periods (25.5 s).
+    """
+    wave = s.apply("wave", RegularWave(height=0.114, period=1.275))
+    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    beach = s.apply("beach", PlaneBeach(toe=4.0, slope=1.0 / 15.0))
+    depth = s.value("flume.depth", 0.705)
+    length = s.value("flume.length", 17.0)
+    flume = Flume(length=length, depth=depth, beach=beach)
+    wl = float(wt.wavelength(wave.period, depth))
+    shore = beach.toe + depth / beach.slope
+    gauges = [ElevationGauge(4.0)]
+    gauges += [ElevationGauge(round(shore - d, 3)) for d in (2.48, 1.42, 0.42)]
+    gauges += [g for g in elevation_gauges_between(8.0, min(14.5, length), 0.5)]
+    gauges += _reflection_triplet(1.5, wl)
+    # seed 001's free surface is the highest particle at the gauge (it also sees the water
+    # over the upper slope, a few particles deep at coarse dp, which the kernel method reads
+    # as dry)
+    gauges = [dataclasses.replace(g, method="particle") for g in _unique_positions(gauges)]
+    num = s.numerics(dp=0.05, coefsound=10.0, until=round(20 * wave.period, 3))
+    return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
+
+
+def _unique_positions(gauges: list[ElevationGauge]) -> list[ElevationGauge]:
+    """Drop gauges at a position already gauged (within 1 mm), keeping the first."""
+    out: list[ElevationGauge] = []
+    for g in gauges:
+        if all(abs(g.x - h.x) > 1e-3 or g.y != h.y for h in out):
+            out.append(g)
+    return out
+
+
+def case_stansby2d(s: _Settings) -> FlumeScene:
+    """Seed 002 (Makris et al.; Stansby & Feng 2005): spilling/plunging breakers on a 1:20 beach.
+
+    d = 0.34 m, slope 1:20, H = 0.105 m, T = 2.42 s (seed Table 1), second-order piston
+    (Ursell number about 45, beyond Madsen's validity: a WaveValidityWarning says so), the 24
+    gauges of seed Table 2, plus gauges at 0.8 and 1.8 m over the flat floor for the reflection
+    coefficient, and the run-up gauge. The elevation gauges take the highest particle (the
+    surf-zone gauges stand in water a few particles deep at the default dp, which the kernel
+    method reads as dry). Flume 11 m long (seed Table 1's horizontal extent lx).
+    The seed does not give where the slope starts: ``beach.toe`` = 2.0 m is an estimate that puts
+    depth-limited breaking (Green's-law shoaling, H/d = 0.78, d_b about 0.16 m) at the seed's
+    incipient-breaking gauges 8-10 (x = 5.5-5.7 m); set it if you know better.
+    dp = 0.03 m (H/dp = 3.5, about 3,500 particles), until = 10 periods (24.2 s).
+    """
+    wave = s.apply("wave", RegularWave(height=0.105, period=2.42))
+    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    beach = s.apply("beach", PlaneBeach(toe=2.0, slope=1.0 / 20.0))
+    depth = s.value("flume.depth", 0.34)
+    length = s.value("flume.length", 11.0)
+    flume = Flume(length=length, depth=depth, beach=beach)
+    gauges = [ElevationGauge(x, method="particle") for x in STANSBY_GAUGES]
+    gauges += [ElevationGauge(0.8, method="particle"), ElevationGauge(1.8, method="particle")]
+    num = s.numerics(dp=0.03, coefsound=10.0, until=round(10 * wave.period, 3))
+    return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
+
+
+def beji_battjes_profile() -> ProfileBeach:
+    """The Beji & Battjes (1993) bar (SOURCES.md section 9, from Basilisk's bar.c): depth 0.4 m
+    for x < 6 m, a 1:20 rise to a 0.1 m deep crest over 6-12 m, crest 12-14 m, 1:10 fall back to
+    0.4 m over 14-17 m."""
+    return ProfileBeach(x=(6.0, 12.0, 14.0, 17.0), z=(0.0, 0.3, 0.3, 0.0))
+
+
+def case_bar2d(s: _Settings) -> FlumeScene:
+    """Beji & Battjes (1993): regular waves over a submerged trapezoidal bar (non-breaking).
+
+    d = 0.4 m, H = 0.02 m, T = 2.02 s (waves2Foam's set-up of the case), second-order piston,
+    the bar of :func:`beji_battjes_profile`, gauges at the eleven measured positions
+    (:data:`BEJI_BATTJES_GAUGES`), flume 21.5 m + one wavelength of damping zone.
+    analysis.json compares the first three harmonic amplitudes at each gauge with the
+    measured records (``beji_battjes``). The default dp = 0.04 m is far too coarse for a 2 cm
+    wave (H/dp = 0.5: the wave is numerically damped); it only shows the case runs, in about
+    three minutes. H/dp >= 5 (dp = 0.004 m) is what a comparison needs.
+    until = ramp + arrival at 21 m + 3 periods (about 25 s).
+    """
+    wave = s.apply("wave", RegularWave(height=0.02, period=2.02))
+    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    depth = s.value("flume.depth", 0.4)
+    wl = float(wt.wavelength(wave.period, depth))
+    length = s.value("flume.length", round(21.5 + wl, 2))
+    damping = s.apply("damping", DampingZone(length=round(wl, 2)))
+    flume = Flume(length=length, depth=depth, beach=beji_battjes_profile(), damping=damping)
+    gauges = [ElevationGauge(x) for x in BEJI_BATTJES_GAUGES if x <= length]
+    num = s.numerics(dp=0.04, coefsound=10.0)
+    return _finish(s, 3.0, max(g.x for g in gauges), flume=flume, wave=wave, paddle=paddle,
+                   gauges=gauges, runup=False, **num)
+
+
+def case_solitary2d(s: _Settings) -> FlumeScene:
+    """A solitary wave running up a plane 1:19.85 beach (Synolakis 1987's slope).
+
+    d = 0.3 m, H/d = 0.3 (H = 0.09 m: a breaking wave, as the NTHMP laboratory benchmark's case
+    H/d = 0.3), Goring piston motion; beach toe 4 m from the paddle (shoreline at 9.955 m),
+    flume 16 m; gauges at 2, 4 (toe), 6, 8 and 9.5 m and the run-up gauge. analysis.json adds
+    Synolakis's non-breaking run-up law for reference (it over-predicts a breaking wave's
+    run-up). dp = 0.03 m (H/dp = 3, about 4,500 particles), until = 14 s.
+    """
+    wave = s.apply("wave", SolitaryWave(height=0.09))
+    paddle = s.apply("paddle", Piston(order=1, ramp_periods=0.0))
+    beach = s.apply("beach", PlaneBeach(toe=4.0, slope=1.0 / 19.85))
+    depth = s.value("flume.depth", 0.3)
+    length = s.value("flume.length", 16.0)
+    flume = Flume(length=length, depth=depth, beach=beach)
+    gauges = [ElevationGauge(x) for x in (2.0, 4.0, 6.0, 8.0, 9.5) if x <= length]
+    num = s.numerics(dp=0.03, coefsound=10.0, until=14.0)
+    return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
+
+
+def case_flume3d(s: _Settings) -> FlumeScene:
+    """A narrow, coarse 3D flume with a piston: the wave-maker in 3D.
+
+    d = 0.2 m, width 0.3 m (ten particles across: the wall layers of a narrower flume reach
+    into all of its water), T = 1.0 s (L = 1.27 m), H = 0.05 m, second-order piston with a
+    one-period ramp; flume 2 L long with a 0.75 L damping zone, walls 0.3 m high; gauges at
+    0.5 L on the centre line and at 1 L at y = 1/4, 1/2 and 3/4 of the width (the wave should
+    stay long-crested), taking the highest particle (the kernel method reads low within 2h of
+    a side wall, whose particles it does not count). dp = 0.03 m (H/dp = 1.7, about 27,000
+    particles, two thirds of them walls), until = ramp + arrival at L + 3 periods (about 5 s).
+    """
+    wave = s.apply("wave", RegularWave(height=0.05, period=1.0))
+    paddle = s.apply("paddle", Piston(order=2, ramp_periods=1.0))
+    depth = s.value("flume.depth", 0.2)
+    width = s.value("flume.width", 0.3)
+    height = s.value("flume.height", 0.3)
+    wl = float(wt.wavelength(wave.period, depth))
+    length = s.value("flume.length", round(2.0 * wl, 2))
+    damping = s.apply("damping", DampingZone(length=round(0.75 * wl, 2)))
+    flume = Flume(length=length, depth=depth, width=width, height=height, damping=damping)
+    y_mid = round(0.5 * width, 4)
+    gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid, method="particle")]
+    gauges += [ElevationGauge(round(wl, 3), y=round(f * width, 4), method="particle")
+               for f in (0.25, 0.5, 0.75)]
+    num = s.numerics(dp=0.03, coefsound=10.0)
+    return _finish(s, 3.0, wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
+
+
+@dataclass(frozen=True)
+class FlumeCase:
+    """A built-in flume case: its one-line description and the function building it."""
+
+    description: str
+    make: Callable[[_Settings], FlumeScene]
+
+
+FLUME_CASES: dict[str, FlumeCase] = {
+    "flume2d": FlumeCase("flat 2D flume, damping zone, regular wave, gauges at 1-3 L",
+                         case_flume2d),
+    "kimmoun2d": FlumeCase("seed 001: regular waves plunging on a 1:15 beach", case_kimmoun2d),
+    "stansby2d": FlumeCase("seed 002: breakers on a 1:20 beach, gauges of Table 2",
+                           case_stansby2d),
+    "bar2d": FlumeCase("Beji & Battjes (1993) submerged bar", case_bar2d),
+    "solitary2d": FlumeCase("solitary wave running up a 1:19.85 beach", case_solitary2d),
+    "flume3d": FlumeCase("narrow coarse 3D flume with a piston", case_flume3d),
+}
+"""The built-in flume cases of ``watersim run``."""
+
+
+def flume_settable_keys(case: str) -> list[str]:
+    """The ``--set`` keys of a flume case, sorted."""
+    s = _Settings({})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        FLUME_CASES[case].make(s)
+    return sorted(set(s.keys))
+
+
+def flume_builder(case: str, items: Mapping[str, str]) -> FlumeScene:
+    """The case's scene with the ``--set`` values ``items`` (key -> text) applied.
+
+    Raises:
+        FlumeCaseError: an unknown key or a value of the wrong type.
+        SceneError: a value the builders refuse (the message names the field).
+    """
+    valid = flume_settable_keys(case)
+    for key in items:
+        if key not in valid:
+            raise FlumeCaseError(
+                f"--set: key {key!r} is unknown for {case}; valid keys: {', '.join(valid)}"
+            )
+    s = _Settings(items)
+    return FLUME_CASES[case].make(s)
+
+
+# ------------------------------------------------------------------------------------------------
+# case-specific analysis
+
+
+def _load_csv(name: str) -> tuple[np.ndarray, np.ndarray]:
+    text = resources.files("watersim.data").joinpath(name).read_text("utf-8")
+    rows = [line.split(",") for line in text.splitlines()[1:] if line.strip()]
+    data = np.array([[float(a), float(b)] for a, b in rows], dtype=np.float64)
+    return data[:, 0], data[:, 1]
+
+
+def beji_battjes_harmonics(period: float = 2.02, n_harmonics: int = 3) -> dict[float, list[float]]:
+    """First harmonic amplitudes [m] of the Beji & Battjes (1993) records, by gauge x [m].
+
+    Each record (regularly sampled, about 42 s) is analysed over all its whole periods with
+    :func:`watersim.analysis.harmonic_analysis`.
+    """
+    out: dict[float, list[float]] = {}
+    for x, name in BEJI_BATTJES_FILES.items():
+        t, eta = _load_csv(name)
+        dt = (t[-1] - t[0]) / (t.size - 1)
+        grid = t[0] + dt * np.arange(t.size)
+        harm = an.harmonic_analysis(eta, grid, period, n_harmonics)
+        out[x] = [float(a) for a in harm.amplitudes]
+    return out
+
+
+def case_extras(case: str, setup: FlumeScene, analysis: dict[str, Any]) -> dict[str, Any]:
+    """Case-specific additions to analysis.json (reference comparisons)."""
+    extras: dict[str, Any] = {}
+    if case == "bar2d":
+        try:
+            measured = beji_battjes_harmonics(setup.period or 2.02)
+        except (OSError, ValueError) as exc:  # pragma: no cover - data shipped with the package
+            return {"beji_battjes": {"error": str(exc)}}
+        rows = []
+        for g in analysis.get("gauges", []):
+            ref = measured.get(round(g["x"], 1))
+            if ref is None:
+                continue
+            sim = g.get("harmonics")
+            rows.append({
+                "x": g["x"],
+                "measured": ref,
+                "simulated": sim,
+                "ratio": None if sim is None else [
+                    (a / b if a is not None and b else None) for a, b in zip(sim, ref, strict=True)
+                ],
+            })
+        extras["beji_battjes"] = {
+            "source": "waves2Foam tutorial records of Beji & Battjes (1993), watersim/data",
+            "quantity": "amplitudes of the first three harmonics [m]",
+            "gauges": rows,
+        }
+    if case == "solitary2d" and isinstance(setup.wave, SolitaryWave):
+        slope = setup.beach_slope or 1.0
+        h_over_d = setup.wave.height / setup.flume.depth
+        law = float(wt.synolakis_runup(setup.wave.height, setup.flume.depth, slope))
+        runup = analysis.get("runup") or {}
+        extras["synolakis"] = {
+            "H_over_d": h_over_d,
+            "runup_over_d_law": law,
+            "runup_over_d_simulated": (None if runup.get("max") is None
+                                       else runup["max"] / setup.flume.depth),
+            "note": "Synolakis (1987) law, valid for non-breaking waves (H/d < 0.045 on 1:19.85)",
+        }
+    if case == "flume3d":
+        xs: dict[float, list[float]] = {}
+        for g in analysis.get("gauges", []):
+            if g.get("H_mean") is not None:
+                xs.setdefault(round(g["x"], 3), []).append(g["H_mean"])
+        spread = {
+            f"{x:.3f}": (max(h) - min(h)) for x, h in xs.items() if len(h) > 1
+        }
+        target = setup.wave.height if isinstance(setup.wave, RegularWave) else None
+        extras["across_width"] = {
+            "H_spread": spread,
+            "H_spread_over_H": {k: v / target for k, v in spread.items()} if target else None,
+        }
+    return extras
+
+
+def headline(case: str, analysis: dict[str, Any]) -> list[str]:
+    """A few lines summarising analysis.json for the terminal."""
+    lines = []
+    for g in analysis.get("gauges", []):
+        if g.get("H_mean") is not None:
+            err = g.get("H_rel_error")
+            extra = "" if err is None else f" ({100 * err:+.1f} % of target)"
+            lines.append(f"  {g['name']}: H = {g['H_mean']:.4f} m, T = {g['T_mean']:.3f} s{extra}")
+        elif g.get("eta_max") is not None:
+            lines.append(f"  {g['name']}: eta_max = {g['eta_max']:.4f} m at t = {g['t_max']:.2f} s")
+    br = analysis.get("breaking") or {}
+    if br.get("position") is not None:
+        lines.append(f"  breaking: x = {br['position']:.2f} m at t = {br['time']:.2f} s, "
+                     f"{br.get('breaker_type')}")
+    ru = analysis.get("runup") or {}
+    if ru.get("mean") is not None:
+        lines.append(f"  run-up: mean {ru['mean']:.4f} m, std {ru['std']:.4f} m over "
+                     f"{ru['n_waves']} waves")
+    elif ru.get("max") is not None:
+        lines.append(f"  run-up: max {ru['max']:.4f} m")
+    refl = analysis.get("reflection")
+    if refl and refl.get("coefficient") is not None:
+        lines.append(f"  reflection coefficient {refl['coefficient']:.3f} ({refl['method']})")
+    return lines[:40]
+
+
