@@ -350,22 +350,23 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
 def case_flume3d(s: _Settings) -> FlumeScene:
     """A narrow, coarse 3D flume with a piston: the wave-maker in 3D.
 
-    d = 0.2 m, width 0.3 m (ten particles across: the wall layers of a narrower flume reach
+    d = 0.2 m, width 0.24 m (eight particles across: the wall layers of a narrower flume reach
     into all of its water), T = 1.0 s (L = 1.27 m), H = 0.05 m, second-order piston with a
-    one-period ramp; flume 2 L long with a 0.75 L damping zone, walls 0.3 m high; gauges at
+    one-period ramp; flume 1.8 L long with a 0.55 L damping zone, walls 0.27 m high; gauges at
     0.5 L on the centre line and at 1 L at y = 1/4, 1/2 and 3/4 of the width (the wave should
     stay long-crested), taking the highest particle (the kernel method reads low within 2h of
-    a side wall, whose particles it does not count). dp = 0.03 m (H/dp = 1.7, about 27,000
-    particles, two thirds of them walls), until = ramp + arrival at L + 3 periods (about 5 s).
+    a side wall, whose particles it does not count). dp = 0.03 m (H/dp = 1.7, about 20,000
+    particles, three quarters of them walls), until = ramp + arrival at L + 3 periods (about
+    5 s).
     """
     wave = s.apply("wave", RegularWave(height=0.05, period=1.0))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=1.0))
     depth = s.value("flume.depth", 0.2)
-    width = s.value("flume.width", 0.3)
-    height = s.value("flume.height", 0.3)
+    width = s.value("flume.width", 0.24)
+    height = s.value("flume.height", 0.27)
     wl = float(wt.wavelength(wave.period, depth))
-    length = s.value("flume.length", round(2.0 * wl, 2))
-    damping = s.apply("damping", DampingZone(length=round(0.75 * wl, 2)))
+    length = s.value("flume.length", round(1.8 * wl, 2))
+    damping = s.apply("damping", DampingZone(length=round(0.55 * wl, 2)))
     flume = Flume(length=length, depth=depth, width=width, height=height, damping=damping)
     y_mid = round(0.5 * width, 4)
     gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid, method="particle")]
