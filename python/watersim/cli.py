@@ -254,6 +254,26 @@ class _Recorder:
                 self._next_report += self.until / 10.0
 
 
+def _run_summary(case: str, status: str, sim: Any, until: float, wall: float, threads: int) -> dict[str, Any]:
+    """The summary.json fields every ``watersim run`` case writes."""
+    return {
+        "case": case,
+        "status": status,
+        "dim": sim.dim,
+        "n_particles": sim.n_particles,
+        "n_fluid": sim.n_fluid,
+        "n_boundary": sim.n_boundary,
+        "steps": sim.steps,
+        "sim_time": sim.time,
+        "until": until,
+        "wall_s": wall,
+        "threads": threads,
+        "state_sha256": sim.state_sha256(),
+        "memory_bytes": sim.memory_bytes(),
+        "version": __version__,
+    }
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     """``watersim run``: run a case, write summary.json (and front.csv for dam breaks)."""
     if args.case in FLUME_CASES:
@@ -297,20 +317,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     wall = time.perf_counter() - t_start
 
     summary: dict[str, Any] = {
-        "case": args.case,
-        "status": status,
-        "dim": sim.dim,
-        "n_particles": sim.n_particles,
-        "n_fluid": sim.n_fluid,
-        "n_boundary": sim.n_boundary,
-        "steps": sim.steps,
-        "sim_time": sim.time,
-        "until": until,
-        "wall_s": wall,
-        "threads": threads,
-        "state_sha256": sim.state_sha256(),
-        "memory_bytes": sim.memory_bytes(),
-        "version": __version__,
+        **_run_summary(args.case, status, sim, until, wall, threads),
         "builder": builder.as_dict(),
         "scene": sim.scene,
         "params": sim.params(),
@@ -405,20 +412,7 @@ def _run_flume(args: argparse.Namespace) -> int:
     _write_json(out / "analysis.json", analysis)
 
     summary: dict[str, Any] = {
-        "case": args.case,
-        "status": status,
-        "dim": sim.dim,
-        "n_particles": sim.n_particles,
-        "n_fluid": sim.n_fluid,
-        "n_boundary": sim.n_boundary,
-        "steps": sim.steps,
-        "sim_time": sim.time,
-        "until": until,
-        "wall_s": wall,
-        "threads": threads,
-        "state_sha256": sim.state_sha256(),
-        "memory_bytes": sim.memory_bytes(),
-        "version": __version__,
+        **_run_summary(args.case, status, sim, until, wall, threads),
         "gauges_csv": "gauges.csv",
         "analysis_json": "analysis.json",
         "n_gauge_samples": int(sim.gauges.t.size),
