@@ -3,7 +3,8 @@
 ::
 
     watersim run CASE [--set key=value ...] [--out DIR] [--sample-every S] [--quiet]
-    watersim bench [--case dambreak2d|dambreak3d] [--particles N] [--steps K] [--set ...] [--json]
+    watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
+                   [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
 
 CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
@@ -36,6 +37,7 @@ from typing import Any, TextIO
 
 from . import __version__
 from ._core import InstabilityError, SceneError
+from .bench_cases import DSPH_CASES, dsph_scene
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
     FLUME_CASES,
@@ -62,7 +64,7 @@ CASES: dict[str, tuple[type[SceneBuilder], dict[str, Any]]] = {
 ALL_CASES: tuple[str, ...] = (*CASES, *FLUME_CASES)
 """Every case ``watersim run`` knows: the verification cases, then the wave-flume cases."""
 
-BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d")
+BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d", *DSPH_CASES)
 
 
 class CliError(Exception):
@@ -450,18 +452,48 @@ def _martin_moyce_summary(
 # watersim bench
 
 
-def _scaled_to(builder: SceneBuilder, n_target: int) -> Simulation:
-    """Build ``builder`` with dp chosen so that the particle count is about ``n_target``."""
-    assert builder.dp is not None
-    dp = builder.dp
-    sim = builder.build()
+def _scaled_to(build: Callable[[float], Simulation], dp: float, dim: int, n_target: int) -> Simulation:
+    """``build(dp)`` with dp chosen so that the particle count is about ``n_target``."""
+    sim = build(dp)
     for _ in range(6):
         n = sim.n_particles
         if abs(n - n_target) <= 0.03 * n_target:
             break
-        dp *= (n / n_target) ** (1.0 / builder.dim)
-        sim = builder.replace(dp=dp).build()
+        dp *= (n / n_target) ** (1.0 / dim)
+        sim = build(dp)
     return sim
+
+
+def _bench_simulation(args: argparse.Namespace) -> Simulation:
+    """The simulation ``watersim bench`` times: a built-in dam break or a DualSPHysics case."""
+    if args.case in DSPH_CASES:
+        if args.set:
+            raise CliError(
+                f"--set: {args.case} reproduces DualSPHysics' settings exactly and takes no "
+                "overrides (use --particles N to scale it)"
+            )
+        spec = DSPH_CASES[args.case]
+        dim = int(dsph_scene(args.case)["dim"])
+
+        def build(dp: float) -> Simulation:
+            return Simulation(dsph_scene(args.case, dp))
+
+        return _scaled_to(build, spec.dp, dim, args.particles) if args.particles else build(spec.dp)
+    builder = builder_from_args(args.case, args.set or [])
+    assert builder.dp is not None
+    if not args.particles:
+        return builder.build()
+    return _scaled_to(lambda dp: builder.replace(dp=dp).build(), builder.dp, builder.dim, args.particles)
+
+
+def _peak_rss_bytes() -> int | None:
+    """Peak resident memory of this process [bytes] (Linux ru_maxrss is in KiB)."""
+    try:
+        import resource
+
+        return int(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss) * 1024
+    except (ImportError, OSError):  # pragma: no cover - not on Linux
+        return None
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -472,8 +504,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         raise CliError(f"--particles: must be at least 10, got {args.particles}")
     if args.steps < 1 or args.warmup < 0:
         raise CliError("--steps: must be at least 1 (and --warmup not negative)")
-    builder = builder_from_args(args.case, args.set or [])
-    sim = _scaled_to(builder, args.particles) if args.particles else builder.build()
+    sim = _bench_simulation(args)
     params = sim.params()
     threads = rayon_threads()
     status = "ok"
@@ -510,8 +541,18 @@ def cmd_bench(args: argparse.Namespace) -> int:
         "diffusion": sim.scene["diffusion"]["model"],
         "integrator": sim.scene["integrator"]["scheme"],
         "sim_time": sim.time,
+        "peak_rss_bytes": _peak_rss_bytes(),
         "version": __version__,
     }
+    if args.case in DSPH_CASES:
+        spec = DSPH_CASES[args.case]
+        result["dsph_particles"] = spec.particles
+        result["dsph_us_per_particle_step"] = {"1": spec.dsph_us[0], "2": spec.dsph_us[1]}
+        result["target_us_per_particle_step"] = {"1": spec.target_us[0], "2": spec.target_us[1]}
+        us = result["us_per_particle_step"]
+        if threads in (1, 2) and us:
+            result["speedup_vs_dsph"] = spec.dsph_us[threads - 1] / us
+            result["meets_target"] = us <= spec.target_us[threads - 1]
     if error is not None:
         result["error"] = error
     if args.json:
@@ -563,7 +604,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
     run.set_defaults(func=cmd_run)
 
-    bench = sub.add_parser("bench", help="time the solver on a dam break scaled to N particles")
+    bench = sub.add_parser("bench", help="time the solver on a dam break or a DualSPHysics reference case")
     bench.add_argument("--case", default="dambreak2d", help=f"one of: {', '.join(BENCH_CASES)}")
     bench.add_argument(
         "--particles",

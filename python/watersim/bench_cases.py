@@ -1,0 +1,157 @@
+"""DualSPHysics 5.4 reference cases for ``watersim bench`` (issue: three times DualSPHysics' CPU
+speed per particle-step on the same machine).
+
+Each case reproduces a DualSPHysics example's geometry and numerical settings, so that the
+microseconds per particle-step compare like with like: same particle count (one layer of
+boundary particles, as DualSPHysics' ``drawbox`` makes), same kernel and ``coefh``, viscosity,
+density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsound``.
+
+=====================  =========================================================================
+``dsph-dambreak3d``    ``CaseDambreak``: tank 1.6 x 0.67 x 0.4 m, water 0.4 x 0.67 x 0.3 m at the
+                       origin, column 0.12 x 0.12 x 0.45 m at (0.9, 0.24, 0); dp 0.0085 m;
+                       171,496 particles (128,310 fluid); cubic spline, coefh 1.0; artificial
+                       alpha 0.1; Fourtakas delta 0.1; Verlet (Euler every 40); CFL 0.2;
+                       coefsound 20. DualSPHysics: 7.73 us (1 thread), 3.95 us (2 threads).
+``dsph-dambreak2d``    ``CaseDambreakVal2D``: column 1 x 2 m in a 4 m tank, dp 0.01 m, 21,001
+                       particles (20,000 fluid); Wendland, coefh 1.0; alpha 0.02; Fourtakas delta
+                       0.1; Verlet; CFL 0.2; coefsound 20. DualSPHysics: 1.16 / 0.70 us.
+``dsph-piston2d``      2D piston flume: depth 0.266 m, H 0.1 m, T 1.3 s, dp 0.006 m, 22,492
+                       particles; Wendland, coefh 1.2; alpha 0.01; no diffusion; Symplectic.
+                       DualSPHysics: 2.06 / 1.23 us.
+=====================  =========================================================================
+
+The scenes are the core's JSON form; ``scale`` multiplies dp (``watersim bench --particles N``
+picks it so that the count is about N, for the O(N) scaling check).
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+__all__ = ["DSPH_CASES", "DsphCase", "dsph_scene"]
+
+
+@dataclass(frozen=True)
+class DsphCase:
+    """A DualSPHysics reference case: its scene maker and DualSPHysics' own timings.
+
+    Attributes:
+        scene: function of the lattice spacing dp [m] returning the core's scene dict.
+        dp: the case's own dp [m].
+        particles: DualSPHysics' particle count at that dp.
+        dsph_us: DualSPHysics 5.4 CPU microseconds per particle-step on (1, 2) threads.
+        description: one line for reports.
+    """
+
+    scene: Callable[[float], dict[str, Any]]
+    dp: float
+    particles: int
+    dsph_us: tuple[float, float]
+    description: str
+
+    @property
+    def target_us(self) -> tuple[float, float]:
+        """The target: three times faster than DualSPHysics, on (1, 2) threads [us]."""
+        return (round(self.dsph_us[0] / 3.0, 2), round(self.dsph_us[1] / 3.0, 2))
+
+
+def _common(dim: int, dp: float, **kw: Any) -> dict[str, Any]:
+    scene: dict[str, Any] = {
+        "dim": dim,
+        "dp": dp,
+        "gravity": 9.81,
+        "rho0": 1000.0,
+        "gamma": 7.0,
+        "cfl": 0.2,
+        "coefsound": 20.0,
+        # DualSPHysics' drawbox boundaries are one particle layer thick
+        "boundary_layers": 1,
+    }
+    scene.update(kw)
+    return scene
+
+
+def dambreak3d(dp: float) -> dict[str, Any]:
+    """DualSPHysics ``CaseDambreak`` (3D dam break against a square column)."""
+    return _common(
+        3,
+        dp,
+        kernel="cubic_spline",
+        coefh=1.0,
+        viscosity={"model": "artificial", "alpha": 0.1},
+        diffusion={"model": "fourtakas", "delta": 0.1},
+        integrator={"scheme": "verlet", "euler_every": 40},
+        tank={"min": [0.0, 0.0, 0.0], "max": [1.6, 0.67, 0.4]},
+        obstacles=[{"shape": "box", "min": [0.9, 0.24, 0.0], "max": [1.02, 0.36, 0.45]}],
+        fluid=[{"min": [0.0, 0.0, 0.0], "max": [0.4, 0.67, 0.3]}],
+    )
+
+
+def dambreak2d(dp: float) -> dict[str, Any]:
+    """DualSPHysics ``CaseDambreakVal2D`` (1 m x 2 m column in a 4 m tank)."""
+    return _common(
+        2,
+        dp,
+        kernel="wendland",
+        coefh=1.0,
+        viscosity={"model": "artificial", "alpha": 0.02},
+        diffusion={"model": "fourtakas", "delta": 0.1},
+        integrator={"scheme": "verlet", "euler_every": 40},
+        tank={"min": [0.0, 0.0], "max": [4.0, 3.0]},
+        fluid=[{"min": [0.0, 0.0], "max": [1.0, 2.0]}],
+    )
+
+
+PISTON_LENGTH = 1.565
+"""Length [m] of the piston flume's flat bed in front of its beach, chosen so that dp = 6 mm
+gives DualSPHysics' 22,492 particles (the example's exact bathymetry is not given; particle
+count, depth, wave, kernel and numerics are)."""
+
+
+def piston2d(dp: float) -> dict[str, Any]:
+    """2D piston flume with regular waves (d = 0.266 m, H = 0.1 m, T = 1.3 s) on a 1:10 beach."""
+    from .flume import Flume, Piston, PlaneBeach, RegularWave
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a steep wave on purpose: H/d = 0.38
+        scene = Flume(
+            length=PISTON_LENGTH + 0.266 * 10.0 + 0.3,
+            depth=0.266,
+            beach=PlaneBeach(toe=PISTON_LENGTH, slope=0.1),
+        ).scene(
+            RegularWave(height=0.1, period=1.3),
+            paddle=Piston(order=1, ramp_periods=1.0),
+            dp=dp,
+            kernel="wendland",
+            coefh=1.2,
+            coefsound=20.0,
+            cfl=0.2,
+            viscosity="artificial",
+            alpha=0.01,
+            diffusion="none",
+            integrator="symplectic",
+            boundary_layers=1,
+            until=10.0,
+        )
+    return scene.to_scene()
+
+
+DSPH_CASES: dict[str, DsphCase] = {
+    "dsph-dambreak3d": DsphCase(dambreak3d, 0.0085, 171_496, (7.73, 3.95),
+                                "3D dam break with obstacle (DualSPHysics CaseDambreak)"),
+    "dsph-dambreak2d": DsphCase(dambreak2d, 0.01, 21_001, (1.16, 0.70),
+                                "2D dam break (DualSPHysics CaseDambreakVal2D)"),
+    "dsph-piston2d": DsphCase(piston2d, 0.006, 22_492, (2.06, 1.23),
+                              "2D piston flume, regular waves"),
+}
+"""The DualSPHysics reference cases of ``watersim bench --case``."""
+
+
+def dsph_scene(case: str, dp: float | None = None) -> dict[str, Any]:
+    """The scene dict of DualSPHysics reference ``case`` at lattice spacing ``dp`` (default: the
+    case's own)."""
+    spec = DSPH_CASES[case]
+    return spec.scene(spec.dp if dp is None else dp)

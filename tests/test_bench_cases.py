@@ -1,0 +1,52 @@
+"""The DualSPHysics reference cases of ``watersim bench``: same particle counts and settings."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import run_cli
+
+from watersim import Simulation
+from watersim.bench_cases import DSPH_CASES, dsph_scene
+
+
+@pytest.mark.parametrize("case", sorted(DSPH_CASES))
+def test_particle_count_matches_dualsphysics(case: str) -> None:
+    sim = Simulation(dsph_scene(case))
+    spec = DSPH_CASES[case]
+    # the lattice conventions differ at the walls by at most a row of particles
+    assert sim.n_particles == pytest.approx(spec.particles, rel=0.012)
+    assert sim.params()["boundary_layers"] == 1
+
+
+def test_settings_are_dualsphysics_own() -> None:
+    s3 = dsph_scene("dsph-dambreak3d")
+    assert (s3["kernel"], s3["coefh"], s3["cfl"], s3["coefsound"]) == ("cubic_spline", 1.0, 0.2, 20.0)
+    assert s3["viscosity"] == {"model": "artificial", "alpha": 0.1}
+    assert s3["diffusion"] == {"model": "fourtakas", "delta": 0.1}
+    assert s3["integrator"] == {"scheme": "verlet", "euler_every": 40}
+    s2 = dsph_scene("dsph-dambreak2d")
+    assert (s2["kernel"], s2["viscosity"]["alpha"], s2["integrator"]["scheme"]) == (
+        "wendland", 0.02, "verlet")
+    piston = dsph_scene("dsph-piston2d")
+    assert (piston["kernel"], piston["coefh"], piston["diffusion"]["model"]) == (
+        "wendland", 1.2, "none")
+    assert piston["integrator"]["scheme"] == "symplectic" and piston["paddle"]["kind"] == "piston"
+    assert DSPH_CASES["dsph-dambreak3d"].target_us == (2.58, 1.32)
+
+
+def test_bench_reports_the_comparison_with_dualsphysics() -> None:
+    proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps", "2",
+                   "--json", env={"RAYON_NUM_THREADS": "1"})
+    assert proc.returncode == 0, proc.stderr
+    result = json.loads(proc.stdout)
+    assert abs(result["n_particles"] - 3000) <= 0.05 * 3000
+    assert result["dsph_us_per_particle_step"] == {"1": 1.16, "2": 0.7}
+    assert result["speedup_vs_dsph"] == pytest.approx(1.16 / result["us_per_particle_step"])
+    assert isinstance(result["meets_target"], bool) and result["peak_rss_bytes"] > 0
+
+
+def test_bench_refuses_overrides_of_a_reference_case() -> None:
+    proc = run_cli("bench", "--case", "dsph-piston2d", "--set", "dp=0.01")
+    assert proc.returncode == 2 and "--set" in proc.stderr
