@@ -279,14 +279,16 @@ def _plot_snapshot(vtu: Path, out: Path) -> Path:
     vel = np.asarray(mesh.point_data.get("velocity", np.zeros_like(pts)))
     speed = np.linalg.norm(vel, axis=1)
     fluid = kind == 0
-    span = np.ptp(pts[:, 0]) or 1.0
-    height = np.ptp(pts[:, 2]) or 1.0
-    fig, ax = plt.subplots(figsize=(10, max(2.5, min(8.0, 8.5 * height / span + 1.2))))
+    span = float(np.ptp(pts[:, 0])) or 1.0
+    height = float(np.ptp(pts[:, 2])) or 1.0
+    # a long flume drawn to scale is a thin line: stretch z up to a quarter of the width
+    stretch = max(1.0, 0.25 * span / height)
+    fig, ax = plt.subplots(figsize=(10, max(2.5, min(8.0, 8.5 * stretch * height / span + 1.5))))
     size = max(0.5, 4000.0 / max(len(pts), 1))
     ax.scatter(pts[~fluid, 0], pts[~fluid, 2], s=size, c="0.6", marker="s", lw=0)
     sc = ax.scatter(pts[fluid, 0], pts[fluid, 2], s=size, c=speed[fluid], cmap="viridis", lw=0)
     fig.colorbar(sc, ax=ax, label="|v| [m/s]", shrink=0.8)
-    ax.set_aspect("equal")
+    ax.set_aspect(stretch)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
     title = f"{vtu.name}"
@@ -295,6 +297,8 @@ def _plot_snapshot(vtu: Path, out: Path) -> Path:
     title += f": {int(fluid.sum())} fluid particles, {int((~fluid).sum())} wall"
     if np.ptp(pts[:, 1]) > 0:
         title += " (3D, projected on x-z)"
+    if stretch > 1.0:
+        title += f"; z stretched x{stretch:.2g}"
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
     return _save(fig, out / "snapshot.png")
