@@ -55,10 +55,9 @@ from .flume_cases import (
 )
 from .measure import front_error, front_position, water_column_height
 from .output import RunLog, RunOutputs
-from .scenefile import OutputOptions, SceneFile, is_scene_file
+from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
-from .scenefile import reference_markdown
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 

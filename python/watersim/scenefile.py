@@ -66,8 +66,16 @@ from .flume import (
     VelocityProbe,
     VelocityWindow,
 )
-from .scenes import DIFFUSION_MODELS, INTEGRATORS, KERNELS, VISCOSITY_MODELS, DamBreak, Tank
-from .scenes import SceneBuilder, _positive
+from .scenes import (
+    DIFFUSION_MODELS,
+    INTEGRATORS,
+    KERNELS,
+    VISCOSITY_MODELS,
+    DamBreak,
+    SceneBuilder,
+    Tank,
+    _positive,
+)
 
 __all__ = [
     "SCENE_TYPES",
@@ -724,6 +732,7 @@ def _class_rows(cls: type, skip: tuple[str, ...] = ()) -> list[str]:
 def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     """(heading, note, class, fields to skip) of each table of the reference."""
     base = tuple(SceneBuilder.field_names())
+    cls: type
     yield ('`type = "dambreak"` (top level)', "", DamBreak, ())
     yield ('`type = "tank"` (top level)', "", Tank, ())
     yield ('`type = "flume"` (top level)',
