@@ -9,6 +9,8 @@ import warnings
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from watersim import cli
 from watersim import scenefile as sf
@@ -259,3 +261,55 @@ def test_reference_lists_every_field_of_every_table() -> None:
                 assert f"| `{f.name}` |" in text, (cls.__name__, f.name)
     for tag in sf.TAGS.values():
         assert f'type = "{tag}"' in text
+
+
+# any TOML value: scalars (absurd numbers included), arrays and tables
+toml_values = st.recursive(
+    st.one_of(
+        st.booleans(),
+        st.integers(-10**6, 10**6),
+        st.floats(allow_nan=True, allow_infinity=True),
+        st.sampled_from([0.0, -1.0, 1e-300, 1e300, 0.5, 2.0]),
+        st.text(max_size=8),
+        st.sampled_from(["regular", "plane", "piston", "elevation", "none", "velocity"]),
+    ),
+    lambda inner: st.one_of(st.lists(inner, max_size=3),
+                            st.dictionaries(st.sampled_from(["type", "x", "height", "n", "bogus"]),
+                                            inner, max_size=3)),
+    max_leaves=6,
+)
+
+
+def _paths(node: object, prefix: tuple = ()) -> list[tuple]:
+    """Every key path and array index of a parsed TOML document."""
+    out = [prefix] if prefix else []
+    if isinstance(node, dict):
+        for k, v in node.items():
+            out += _paths(v, (*prefix, k))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            out += _paths(v, (*prefix, i))
+    return out
+
+
+@settings(max_examples=150, deadline=None)
+@given(data=st.data(), value=toml_values)
+def test_any_value_anywhere_is_accepted_or_refused_with_its_path(data: st.DataObject,
+                                                                   value: object) -> None:
+    import tomllib
+
+    doc = tomllib.loads(FLUME)
+    path = data.draw(st.sampled_from(_paths(doc) + [("extra",), ("wave", "extra")]))
+    node = doc
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value  # type: ignore[index]
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a valid but steep wave warns
+            scene = sf.scene_from_dict(doc, source="f.toml")
+            scene.builder.to_scene()
+    except sf.SceneFileError as exc:
+        message = str(exc)
+        assert message.startswith("f.toml: ") and ": " in message[len("f.toml: "):], message
+        assert "\n" not in message
