@@ -12,6 +12,7 @@ Public names:
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
 - :func:`front_position`: dam-break surge front from fluid positions.
+- :func:`load_scene`: a scene file (TOML, :mod:`watersim.scenefile`) as builder + output options.
 - :mod:`wave_theory`, :mod:`analysis`: wave-maker theory and gauge analysis.
 """
 
@@ -43,6 +44,7 @@ from .flume import (
     elevation_gauges_between,
 )
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
+from .scenefile import load as load_scene
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
@@ -82,6 +84,7 @@ __all__ = [
     "front_position",
     "load_checkpoint",
     "load_martin_moyce",
+    "load_scene",
     "save_checkpoint",
     "water_column_height",
     "wave_theory",

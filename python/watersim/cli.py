@@ -2,7 +2,10 @@
 
 ::
 
-    watersim run CASE [--set key=value ...] [--out DIR] [--sample-every S] [--quiet]
+    watersim run CASE|FILE.toml [--set key=value ...] [--out DIR] [--sample-every S]
+                 [--snapshot-every S] [--progress|--no-progress] [--quiet]
+    watersim show-scene CASE|FILE.toml [--set ...]     (or --reference)
+    watersim plot DIR
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
                    [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
@@ -17,6 +20,11 @@ The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``sol
 objects (``--set wave.height=0.06 --set paddle.order=1 --set beach.slope=0.05``) and write
 ``summary.json``, ``gauges.csv`` (rewritten as the run goes, so an unstable run keeps its
 records) and ``analysis.json``.
+
+A scene file (``watersim run FILE.toml``, :mod:`watersim.scenefile`) describes any scene the
+builders can make; ``watersim show-scene CASE`` prints a built-in case as one. Every run writes
+``log.jsonl`` and, when asked (``--snapshot-every`` or the file's ``[output]`` table), particle
+snapshots for ParaView; ``watersim plot DIR`` draws a finished run (:mod:`watersim.plotting`).
 """
 
 from __future__ import annotations
@@ -48,6 +56,10 @@ from .flume_cases import (
     headline,
 )
 from .measure import front_error, front_position, water_column_height
+from .output import RunLog, RunOutputs
+from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
+from .scenefile import dumps as scene_dumps
+from .scenefile import load as load_scene_file
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
@@ -132,8 +144,10 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
 
     Raises:
         CliError: unknown case or key, or a value of the wrong type.
-        SceneError: a value the builder refuses.
+        SceneError: a value the builder refuses (a scene file's errors name the key's path).
     """
+    if is_scene_file(case):
+        return load_scene_file(case, settings).builder
     if case in FLUME_CASES:
         return _flume_builder_from_args(case, settings)
     if case not in CASES:
@@ -226,12 +240,14 @@ class _Recorder:
         dp: particle spacing [m].
         until: end time of the run [s].
         say: where progress lines go (``print`` or a no-op).
+        log: the run's log.jsonl, which gets a ``sample`` event per call.
     """
 
     def __init__(
-        self, front_file: TextIO | None, dp: float, until: float, say: Callable[[str], None]
+        self, front_file: TextIO | None, dp: float, until: float, say: Callable[[str], None],
+        log: RunLog | None = None,
     ) -> None:
-        self.dp, self.until, self.say = dp, until, say
+        self.dp, self.until, self.say, self.log = dp, until, say, log
         self.file = front_file
         self.writer = csv.writer(front_file) if front_file is not None else None
         if self.writer is not None:
@@ -249,6 +265,8 @@ class _Recorder:
             self.fronts.append(x_front)
             self.writer.writerow([repr(sim.time), repr(x_front), repr(h_column)])
             self.file.flush()  # rows so far survive a crash or an instability
+        if self.log is not None:
+            self.log.sample(sim, **({"x_front": self.fronts[-1]} if self.fronts else {}))
         if sim.time >= self._next_report:
             front = f", front {self.fronts[-1]:.3f} m" if self.fronts else ""
             self.say(f"  t = {sim.time:.3f} s, {sim.steps} steps, dt = {sim.dt:.3g} s{front}")
@@ -276,16 +294,53 @@ def _run_summary(case: str, status: str, sim: Any, until: float, wall: float, th
     }
 
 
-def cmd_run(args: argparse.Namespace) -> int:
-    """``watersim run``: run a case, write summary.json (and front.csv for dam breaks)."""
-    if args.case in FLUME_CASES:
-        return _run_flume(args)
+def _run_input(args: argparse.Namespace) -> SceneFile:
+    """The scene of ``watersim run CASE|FILE.toml`` (a built-in case has no [output] table)."""
+    if is_scene_file(args.case):
+        return load_scene_file(args.case, args.set or [])
     builder = builder_from_args(args.case, args.set or [])
+    return SceneFile(name=args.case, builder=builder, output=OutputOptions())
+
+
+def _positive_option(name: str, value: float | None) -> float | None:
+    if value is not None and not (value > 0.0 and math.isfinite(value)):
+        raise CliError(f"{name}: must be a positive number, got {value!r}")
+    return value
+
+
+def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, float | None, bool]:
+    """Output folder, snapshot interval and progress bar of a run: the command line first,
+    then the scene file's [output] table, then the defaults."""
+    out = Path(args.out or scene.output.directory or Path("runs") / scene.name)
+    if args.sample_every is None:
+        args.sample_every = scene.output.sample_every
+    _positive_option("--sample-every", args.sample_every)
+    snapshot_every = _positive_option("--snapshot-every", args.snapshot_every)
+    if snapshot_every is None:
+        snapshot_every = scene.output.snapshot_every
+    if args.progress is None:
+        progress = sys.stderr.isatty() and not args.quiet
+    else:
+        progress = bool(args.progress)
+    return out, snapshot_every, progress
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    """``watersim run``: run a case or a scene file, write summary.json, log.jsonl (and
+    front.csv for dam breaks, snapshots when asked)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        scene = _run_input(args)
+    notes = [f"{w.category.__name__}: {w.message}" for w in caught]
+    for note in notes:
+        print(f"watersim: warning: {note}", file=sys.stderr)
+    out, snapshot_every, progress = _run_options(args, scene)
+    if isinstance(scene.builder, FlumeScene):
+        return _run_flume(args, scene, notes, out, snapshot_every, progress)
+    builder = scene.builder
+    name = scene.name
     if args.sample_every is None:
         args.sample_every = 0.01
-    if not (args.sample_every > 0.0 and math.isfinite(args.sample_every)):
-        raise CliError(f"--sample-every: must be a positive number, got {args.sample_every!r}")
-    out = Path(args.out if args.out is not None else Path("runs") / args.case)
     out.mkdir(parents=True, exist_ok=True)
     sim = builder.build()
     until = float(builder.until)  # type: ignore[arg-type]
@@ -293,17 +348,22 @@ def cmd_run(args: argparse.Namespace) -> int:
     threads = rayon_threads()
     say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
     say(
-        f"watersim {__version__}: {args.case}, {sim.n_particles} particles "
+        f"watersim {__version__}: {name}, {sim.n_particles} particles "
         f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
     )
+    outputs = RunOutputs(out, snapshot_every)
+    outputs.log.write("start", case=name, n_particles=sim.n_particles, dp=builder.dp,
+                      until=until, threads=threads, version=__version__)
 
     status = "ok"
     error: dict[str, Any] | None = None
     t_start = time.perf_counter()
     front_file = open(out / "front.csv", "w", newline="", encoding="utf-8") if is_dambreak else None
-    recorder = _Recorder(front_file, float(builder.dp), until, say)  # type: ignore[arg-type]
+    recorder = _Recorder(front_file, float(builder.dp), until,  # type: ignore[arg-type]
+                         (lambda _line: None) if progress else say, outputs.log)
     try:
-        sim.run(until, callback_every=args.sample_every, callback=recorder)
+        sim.run_schedule(until, [(args.sample_every, recorder), *outputs.schedule()],
+                         progress=progress)
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
         error = _error_record(exc)
@@ -316,10 +376,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     finally:
         if front_file is not None:
             front_file.close()
+        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
+        outputs.close()
     wall = time.perf_counter() - t_start
 
     summary: dict[str, Any] = {
-        **_run_summary(args.case, status, sim, until, wall, threads),
+        **_run_summary(name, status, sim, until, wall, threads),
+        **outputs.summary(),
         "builder": builder.as_dict(),
         "scene": sim.scene,
         "params": sim.params(),
@@ -351,28 +414,31 @@ def cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_flume(args: argparse.Namespace) -> int:
-    """``watersim run`` for a wave-flume case: summary.json, gauges.csv, analysis.json."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        builder = builder_from_args(args.case, args.set or [])
+def _run_flume(
+    args: argparse.Namespace,
+    scene: SceneFile,
+    notes: list[str],
+    out: Path,
+    snapshot_every: float | None,
+    progress: bool,
+) -> int:
+    """``watersim run`` for a wave flume: summary.json, gauges.csv, analysis.json, log.jsonl."""
+    builder = scene.builder
     assert isinstance(builder, FlumeScene)
+    name = scene.name
     say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
-    notes = [f"{w.category.__name__}: {w.message}" for w in caught]
-    for note in notes:
-        print(f"watersim: warning: {note}", file=sys.stderr)
     until = float(builder.until)  # type: ignore[arg-type]
     every = args.sample_every if args.sample_every is not None else max(until / 20.0, 1e-6)
-    if not (every > 0.0 and math.isfinite(every)):
-        raise CliError(f"--sample-every: must be a positive number, got {every!r}")
-    out = Path(args.out if args.out is not None else Path("runs") / args.case)
     out.mkdir(parents=True, exist_ok=True)
     sim = builder.build()
     threads = rayon_threads()
     say(
-        f"watersim {__version__}: {args.case}, {sim.n_particles} particles "
+        f"watersim {__version__}: {name}, {sim.n_particles} particles "
         f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
     )
+    outputs = RunOutputs(out, snapshot_every)
+    outputs.log.write("start", case=name, n_particles=sim.n_particles, dp=builder.dp,
+                      until=until, threads=threads, version=__version__, warnings=notes)
     csv_path = out / "gauges.csv"
     t_start = time.perf_counter()
     next_report = [0.0]
@@ -380,7 +446,8 @@ def _run_flume(args: argparse.Namespace) -> int:
     def on_sample(s: Simulation) -> None:
         assert isinstance(s, FlumeSimulation)
         s.write_gauges_csv(csv_path)  # records so far survive a crash or an instability
-        if s.time >= next_report[0]:
+        outputs.log.sample(s)
+        if not progress and s.time >= next_report[0]:
             say(f"  t = {s.time:.3f} s, {s.steps} steps, dt = {s.dt:.3g} s, "
                 f"wall {time.perf_counter() - t_start:.1f} s")
             while next_report[0] <= s.time:
@@ -389,7 +456,7 @@ def _run_flume(args: argparse.Namespace) -> int:
     status = "ok"
     error: dict[str, Any] | None = None
     try:
-        sim.run(until, callback_every=every, callback=on_sample)
+        sim.run_schedule(until, [(every, on_sample), *outputs.schedule()], progress=progress)
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
         error = _error_record(exc)
@@ -401,20 +468,25 @@ def _run_flume(args: argparse.Namespace) -> int:
         error = _error_record(exc)
     finally:
         sim.write_gauges_csv(csv_path)
+        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
+        outputs.close()
     wall = time.perf_counter() - t_start
 
     analysis: dict[str, Any]
     try:
         analysis = sim.analyse()
-        analysis.update(case_extras(args.case, builder, analysis))
+        # reference comparisons belong to the built-in cases, not to a file of the same name
+        extras_case = "" if scene.path is not None else name
+        analysis.update(case_extras(extras_case, builder, analysis))
     except Exception as exc:  # noqa: BLE001 - the analysis must not lose the run's outputs
         analysis = {"error": _error_record(exc)}
-    analysis["case"] = args.case
+    analysis["case"] = name
     analysis["status"] = status
     _write_json(out / "analysis.json", analysis)
 
     summary: dict[str, Any] = {
-        **_run_summary(args.case, status, sim, until, wall, threads),
+        **_run_summary(name, status, sim, until, wall, threads),
+        **outputs.summary(),
         "gauges_csv": "gauges.csv",
         "analysis_json": "analysis.json",
         "n_gauge_samples": int(sim.gauges.t.size),
@@ -426,7 +498,7 @@ def _run_flume(args: argparse.Namespace) -> int:
     if error is not None:
         summary["error"] = error
     _write_json(out / "summary.json", summary)
-    for line in headline(args.case, analysis):
+    for line in headline(name, analysis):
         say(line)
     say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
     if error is not None:
@@ -578,6 +650,41 @@ def cmd_scene(args: argparse.Namespace) -> int:
 
 
 # ------------------------------------------------------------------------------------------------
+# watersim show-scene, watersim plot
+
+
+def cmd_show_scene(args: argparse.Namespace) -> int:
+    """``watersim show-scene``: a case's full, resolved scene as a scene file (TOML)."""
+    if args.reference:
+        if args.case is not None or args.set:
+            raise CliError("--reference: takes no CASE or --set")
+        sys.stdout.write(reference_markdown())
+        return 0
+    if args.case is None:
+        raise CliError(f"CASE: required; a scene file FILE.toml or one of: {', '.join(ALL_CASES)}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # wave-validity warnings: `watersim run` prints them
+        scene = _run_input(args)
+    header = f"watersim show-scene {args.case}" + "".join(f" --set {s}" for s in args.set or [])
+    header += f"\nwatersim {__version__}; run it with: watersim run FILE.toml"
+    sys.stdout.write(scene_dumps(scene.builder, scene.output, header=header))
+    return 0
+
+
+def cmd_plot(args: argparse.Namespace) -> int:
+    """``watersim plot``: PNG figures of a finished run; prints the files written."""
+    from .plotting import PlotError, plot_run
+
+    try:
+        written = plot_run(args.directory, args.out)
+    except PlotError as exc:
+        raise CliError(str(exc)) from None
+    for path in written:
+        print(path)
+    return 0
+
+
+# ------------------------------------------------------------------------------------------------
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -589,8 +696,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     set_help = "override a case parameter (repeatable), e.g. --set dp=0.04"
-    run = sub.add_parser("run", help="run a built-in case and write summary.json")
-    run.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
+    run = sub.add_parser("run", help="run a built-in case or a scene file (FILE.toml)")
+    run.add_argument(
+        "case", metavar="CASE", help=f"a scene file FILE.toml, or one of: {', '.join(ALL_CASES)}"
+    )
     run.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     run.add_argument("--out", metavar="DIR", help="output folder (default: runs/CASE)")
     run.add_argument(
@@ -601,8 +710,37 @@ def build_parser() -> argparse.ArgumentParser:
         help="dam breaks: front sampling interval in simulated seconds (default 0.01); "
         "flume cases: how often gauges.csv is rewritten (default until/20)",
     )
+    run.add_argument(
+        "--snapshot-every",
+        type=float,
+        default=None,
+        metavar="S",
+        help="write particle snapshots (VTK .vtu + .pvd for ParaView) every S simulated seconds "
+        "into DIR/snapshots (default: the scene file's [output] snapshot_every, else none)",
+    )
+    run.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="show a progress bar on stderr (default: when stderr is a terminal)",
+    )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
     run.set_defaults(func=cmd_run)
+
+    show = sub.add_parser(
+        "show-scene", help="print a case's full scene as a scene file (TOML), or --reference"
+    )
+    show.add_argument("case", metavar="CASE", nargs="?",
+                      help=f"a scene file FILE.toml, or one of: {', '.join(ALL_CASES)}")
+    show.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
+    show.add_argument("--reference", action="store_true",
+                      help="print the scene-file reference (docs/scene-reference.md) instead")
+    show.set_defaults(func=cmd_show_scene)
+
+    plot = sub.add_parser("plot", help="draw PNG figures of a finished run folder")
+    plot.add_argument("directory", metavar="DIR", help="the run's output folder (--out)")
+    plot.add_argument("--out", metavar="FIGDIR", help="where the PNGs go (default DIR/plots)")
+    plot.set_defaults(func=cmd_plot)
 
     bench = sub.add_parser("bench", help="time the solver on a dam break or a DualSPHysics reference case")
     bench.add_argument("--case", default="dambreak2d", help=f"one of: {', '.join(BENCH_CASES)}")

@@ -54,7 +54,6 @@ import functools
 import itertools
 import math
 import os
-import time
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -1713,7 +1712,7 @@ class FlumeSimulation(Simulation):
 
         Args:
             until: end time [s].
-            progress: print a line every tenth of the run (time, steps, wall seconds).
+            progress: show a progress bar on stderr (see :meth:`watersim.Simulation.run`).
             callback_every, callback: as :meth:`watersim.Simulation.run`.
 
         Raises:
@@ -1721,30 +1720,19 @@ class FlumeSimulation(Simulation):
                 last good step stay readable (:attr:`gauges`).
         """
         end = float(self.setup.until if until is None else until)  # type: ignore[arg-type]
-        if not progress:
-            super().run(end, callback_every=callback_every, callback=callback)
-            return
-        start_wall = time.perf_counter()
-        span = max(end - self.time, 1e-12)
+        super().run(end, callback_every=callback_every, callback=callback, progress=progress)
 
-        def report(sim: Simulation) -> None:
-            print(f"  t = {sim.time:8.3f} s  steps {sim.steps:8d}  dt {sim.dt:.3g} s  "
-                  f"wall {time.perf_counter() - start_wall:7.1f} s", flush=True)
-
-        if callback is None:
-            super().run(end, callback_every=span / 10.0, callback=report)
-            return
-        every = callback_every if callback_every is not None else span / 10.0
-        next_report = [self.time]
-
-        def both(sim: Simulation) -> None:
-            callback(sim)
-            if sim.time >= next_report[0]:
-                report(sim)
-                while next_report[0] <= sim.time:
-                    next_report[0] += span / 10.0
-
-        super().run(end, callback_every=every, callback=both)
+    def __repr__(self) -> str:
+        setup = self.setup
+        flume = setup.flume
+        size = f"{flume.length:g} m long, {flume.depth:g} m deep"
+        if flume.width is not None:
+            size += f", {flume.width:g} m wide"
+        n_gauges = len(setup.gauges) + (setup.runup_gauge is not None)
+        return (
+            f"{super().__repr__()[:-1]}, flume {size}, {type(setup.wave).__name__}, "
+            f"{type(setup.paddle).__name__}, {n_gauges} gauges, until={setup.until:g} s)"
+        )
 
     def write_gauges_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write ``gauges.csv`` (see :meth:`FlumeGauges.to_csv`)."""

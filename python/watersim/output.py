@@ -10,8 +10,13 @@ Each snapshot holds every particle as a vertex with the point fields ``velocity`
 
 from __future__ import annotations
 
+import json
+import math
+import time
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any, TextIO
 
 import meshio
 import numpy as np
@@ -19,7 +24,7 @@ import numpy.typing as npt
 
 from .simulation import Simulation
 
-__all__ = ["SnapshotWriter", "snapshot_mesh"]
+__all__ = ["RunLog", "RunOutputs", "SnapshotWriter", "snapshot_mesh"]
 
 
 def _to_3d(a: npt.NDArray[np.float64], dim: int) -> npt.NDArray[np.float64]:
@@ -80,6 +85,10 @@ class SnapshotWriter:
         self._write_pvd()
         return path
 
+    def __call__(self, sim: Simulation) -> None:
+        """Writes one snapshot (so a writer can be a :meth:`Simulation.run` callback)."""
+        self.write(sim)
+
     def _write_pvd(self) -> None:
         root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
         collection = ET.SubElement(root, "Collection")
@@ -88,3 +97,97 @@ class SnapshotWriter:
         tmp = self.pvd_path.with_suffix(".pvd.tmp")
         ET.ElementTree(root).write(tmp, xml_declaration=True, encoding="utf-8")
         tmp.replace(self.pvd_path)
+
+
+def _json_ready(value: Any) -> Any:
+    """NumPy values as Python ones and non-finite floats as None (strict JSON)."""
+    if isinstance(value, dict):
+        return {str(k): _json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_ready(v) for v in value]
+    if hasattr(value, "tolist"):
+        return _json_ready(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+class RunLog:
+    """``log.jsonl``: the run's events, one JSON object per line, flushed as they happen (so a
+    crashed or interrupted run keeps its log).
+
+    Each line has ``event`` (``start``, ``sample``, ``snapshot``, ``end``, ...), ``wall_s`` (wall
+    seconds since the log was opened) and the event's own fields (``t`` [s], ``steps``, ``dt``
+    [s], ...).
+
+    Args:
+        path: the file (overwritten).
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self._file: TextIO | None = open(self.path, "w", encoding="utf-8")
+        self._start = time.perf_counter()
+
+    def write(self, event: str, **fields: Any) -> None:
+        """Append one event."""
+        if self._file is None:
+            raise ValueError(f"{self.path}: the log is closed")
+        record = {"event": event, "wall_s": round(time.perf_counter() - self._start, 6), **fields}
+        self._file.write(json.dumps(_json_ready(record), allow_nan=False) + "\n")
+        self._file.flush()
+
+    def sample(self, sim: Simulation, **fields: Any) -> None:
+        """A ``sample`` event with the simulation's time, steps and last dt."""
+        self.write("sample", t=sim.time, steps=sim.steps, dt=sim.dt, **fields)
+
+    def close(self) -> None:
+        if self._file is not None:
+            self._file.close()
+            self._file = None
+
+
+class RunOutputs:
+    """The files of one ``watersim run`` besides summary.json: ``log.jsonl`` always, particle
+    snapshots (``snapshots/particles_NNNNN.vtu`` + ``snapshots/particles.pvd``) only when
+    ``snapshot_every`` is given.
+
+    Args:
+        directory: the run's output folder (exists).
+        snapshot_every: interval between snapshots [s] of simulated time, or None for none.
+    """
+
+    def __init__(self, directory: str | Path, snapshot_every: float | None) -> None:
+        self.directory = Path(directory)
+        self.snapshot_every = snapshot_every
+        self.log = RunLog(self.directory / "log.jsonl")
+        self.snapshots = (
+            SnapshotWriter(self.directory / "snapshots") if snapshot_every is not None else None
+        )
+
+    def schedule(self) -> list[tuple[float, Callable[[Simulation], Any]]]:
+        """The ``(interval, callback)`` pairs to add to :meth:`Simulation.run_schedule`."""
+        if self.snapshots is None or self.snapshot_every is None:
+            return []
+        return [(self.snapshot_every, self._snapshot)]
+
+    def _snapshot(self, sim: Simulation) -> None:
+        assert self.snapshots is not None
+        path = self.snapshots.write(sim)
+        self.log.write("snapshot", t=sim.time, steps=sim.steps,
+                       file=str(path.relative_to(self.directory)))
+
+    def summary(self) -> dict[str, Any]:
+        """What summary.json records about these files."""
+        info: dict[str, Any] = {"log": "log.jsonl"}
+        if self.snapshots is not None:
+            info["snapshots"] = {
+                "pvd": str(self.snapshots.pvd_path.relative_to(self.directory)),
+                "every": self.snapshot_every,
+                "count": len(self.snapshots.entries),
+                "times": [t for t, _ in self.snapshots.entries],
+            }
+        return info
+
+    def close(self) -> None:
+        self.log.close()

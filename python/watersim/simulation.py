@@ -11,7 +11,8 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from collections.abc import Callable, Mapping
+import time
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -184,11 +185,19 @@ class Simulation:
             digest.update(sorted_le.tobytes())
         return digest.hexdigest()
 
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__name__}(dim={self.dim}, particles={self.n_particles} "
+            f"({self.n_fluid} fluid), time={self.time:.6g} s, steps={self.steps}, "
+            f"dt={self.dt:.3g} s)"
+        )
+
     def run(
         self,
         until: float,
         callback_every: float | None = None,
         callback: Callable[[Simulation], None] | None = None,
+        progress: bool = False,
     ) -> None:
         """Advance until ``time >= until`` [s], optionally calling back at sample times.
 
@@ -197,28 +206,133 @@ class Simulation:
         ``until``. The call sees the state at the first step that reaches the sample time, so
         ``sim.time`` may be past it by less than one ``dt``: record ``sim.time``.
 
+        Args:
+            until: end time [s].
+            callback_every: interval between callbacks [s] (required with ``callback``).
+            callback: called with this simulation at each sample time.
+            progress: show a progress bar on stderr (tqdm): simulated time [s] as its position,
+                the last time step and particle-steps per wall second as its postfix. The core
+                never shortens a step to land on a stopping time, so the bar's intermediate
+                stops do not change the results (the state hash is the same without it).
+
         Raises:
             InstabilityError: a stability monitor stopped the run; samples taken before it were
                 passed to ``callback``, and the last good state stays readable.
         """
-        if not math.isfinite(until):
-            raise ValueError(f"until: must be finite, got {until!r}")
         if callback is None:
-            self._sim.run(until)
+            self.run_schedule(until, (), progress=progress)
             return
         if callback_every is None or not (callback_every > 0.0 and math.isfinite(callback_every)):
             raise ValueError(f"callback_every: must be a positive number, got {callback_every!r}")
-        t0 = self._sim.time
-        callback(self)
-        k = 1
-        # A sample closer than 1e-9 of an interval to `until` is merged with the final one.
-        while t0 + k * callback_every < until - 1e-9 * callback_every:
-            target = t0 + k * callback_every
-            k += 1
-            if self._sim.time >= target:
-                continue
+        self.run_schedule(until, ((callback_every, callback),), progress=progress)
+
+    def run_schedule(
+        self,
+        until: float,
+        schedule: Sequence[tuple[float, Callable[[Simulation], Any]]],
+        progress: bool = False,
+    ) -> None:
+        """Advance until ``time >= until`` [s], calling several callbacks at their own intervals.
+
+        Each ``(every, callback)`` of ``schedule`` is called as :meth:`run` calls its callback:
+        once at the current time, at the first step reaching each ``t0 + k * every`` (once per
+        stop, even if a step passes several of its sample times) and at ``until``. Callbacks due
+        at the same stop are called in ``schedule`` order. A sample closer than ``1e-9 * every``
+        to ``until`` is merged with the final one.
+
+        Args:
+            until: end time [s].
+            schedule: ``(interval [s], callback)`` pairs.
+            progress: show a progress bar (see :meth:`run`).
+
+        Raises:
+            ValueError: ``until`` not finite, or an interval not a positive number.
+            InstabilityError: a stability monitor stopped the run.
+        """
+        if not math.isfinite(until):
+            raise ValueError(f"until: must be finite, got {until!r}")
+        for every, _ in schedule:
+            if not (every > 0.0 and math.isfinite(every)):
+                raise ValueError(f"callback_every: must be a positive number, got {every!r}")
+        bar = _Progress(self, until) if progress else None
+        try:
+            t0 = self._sim.time
+            for _, callback in schedule:
+                callback(self)
+            ks = [1] * len(schedule)
+
+            def due(i: int) -> float | None:
+                every = schedule[i][0]
+                target = t0 + ks[i] * every
+                return target if target < until - 1e-9 * every else None
+
+            while True:
+                targets = [t for t in (due(i) for i in range(len(schedule))) if t is not None]
+                if not targets:
+                    break
+                target = min(targets)
+                self._advance(target, bar)
+                for i, (every, callback) in enumerate(schedule):
+                    t_i = due(i)
+                    if t_i is None or self._sim.time < t_i:
+                        continue
+                    callback(self)
+                    while t0 + ks[i] * every <= self._sim.time:
+                        ks[i] += 1
+            if self._sim.time < until:
+                self._advance(until, bar)
+                for _, callback in schedule:
+                    callback(self)
+        finally:
+            if bar is not None:
+                bar.close()
+
+    def _advance(self, target: float, bar: _Progress | None) -> None:
+        """Run the core to ``target`` [s], in pieces that update the progress bar if any."""
+        if bar is None:
             self._sim.run(target)
-            callback(self)
-        if self._sim.time < until:
-            self._sim.run(until)
-            callback(self)
+            return
+        while self._sim.time < target:
+            self._sim.run(min(target, self._sim.time + bar.chunk))
+            bar.update()
+
+
+class _Progress:
+    """A tqdm bar over simulated time, with dt and particle-steps per second as its postfix.
+
+    The core is run in pieces of 1/500 of the run's simulated time between updates (cheap:
+    each piece is many steps, and stopping never changes a step).
+    """
+
+    def __init__(self, sim: Simulation, until: float) -> None:
+        from tqdm import tqdm
+
+        self.sim = sim
+        self.t0 = sim.time
+        self.total = max(until - self.t0, 0.0)
+        self.chunk = max(self.total / 500.0, 1e-12)
+        self.steps0 = sim.steps
+        self.wall0 = time.perf_counter()
+        self.bar = tqdm(
+            total=self.total,
+            unit="s",
+            desc="t",
+            bar_format="{desc} {n:.4g}/{total:.4g} s |{bar}| {percentage:3.0f}% "
+            "[{elapsed}<{remaining}{postfix}]",
+            dynamic_ncols=True,
+            leave=True,
+        )
+
+    def update(self) -> None:
+        """Move the bar to the simulation's time and refresh the postfix."""
+        sim = self.sim
+        wall = time.perf_counter() - self.wall0
+        rate = sim.n_particles * (sim.steps - self.steps0) / wall if wall > 0.0 else 0.0
+        self.bar.set_postfix_str(f"dt={sim.dt:.3g} s, {rate:.3g} particle-steps/s",
+                                 refresh=False)
+        # update() redraws at most every tqdm mininterval (0.1 s), unlike refresh()
+        self.bar.update(min(sim.time - self.t0, self.total) - self.bar.n)
+
+    def close(self) -> None:
+        self.update()
+        self.bar.close()
