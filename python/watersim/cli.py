@@ -36,6 +36,7 @@ from typing import Any, TextIO
 
 from . import __version__
 from ._core import InstabilityError, SceneError
+from .checkpoint import LastGood
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
     FLUME_CASES,
@@ -48,6 +49,7 @@ from .flume_cases import (
 from .measure import front_error, front_position, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
+from .stress import add_parser as add_stress_parser
 
 __all__ = ["ALL_CASES", "CASES", "main"]
 
@@ -279,6 +281,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     if args.case in FLUME_CASES:
         return _run_flume(args)
     builder = builder_from_args(args.case, args.set or [])
+    keeper = _last_good_keeper(args)
     if args.sample_every is None:
         args.sample_every = 0.01
     if not (args.sample_every > 0.0 and math.isfinite(args.sample_every)):
@@ -300,8 +303,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     front_file = open(out / "front.csv", "w", newline="", encoding="utf-8") if is_dambreak else None
     recorder = _Recorder(front_file, float(builder.dp), until, say)  # type: ignore[arg-type]
+
+    def sample(s: Simulation) -> None:
+        recorder(s)
+        keeper(s)
+
     try:
-        sim.run(until, callback_every=args.sample_every, callback=recorder)
+        sim.run(until, callback_every=args.sample_every, callback=sample)
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
         error = _error_record(exc)
@@ -324,6 +332,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     }
     if error is not None:
         summary["error"] = error
+        summary["last_good"] = keeper.save_record(_last_good_path(args, out))
     if is_dambreak:
         assert isinstance(builder, DamBreak)
         summary["front_csv"] = "front.csv"
@@ -355,6 +364,7 @@ def _run_flume(args: argparse.Namespace) -> int:
         warnings.simplefilter("always")
         builder = builder_from_args(args.case, args.set or [])
     assert isinstance(builder, FlumeScene)
+    keeper = _last_good_keeper(args)
     say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
     notes = [f"{w.category.__name__}: {w.message}" for w in caught]
     for note in notes:
@@ -387,7 +397,7 @@ def _run_flume(args: argparse.Namespace) -> int:
     status = "ok"
     error: dict[str, Any] | None = None
     try:
-        sim.run(until, callback_every=every, callback=on_sample)
+        sim.run(until, callback_every=every, callback=lambda s: (on_sample(s), keeper(s)))
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
         error = _error_record(exc)
@@ -423,6 +433,7 @@ def _run_flume(args: argparse.Namespace) -> int:
     }
     if error is not None:
         summary["error"] = error
+        summary["last_good"] = keeper.save_record(_last_good_path(args, out))
     _write_json(out / "summary.json", summary)
     for line in headline(args.case, analysis):
         say(line)
@@ -431,6 +442,18 @@ def _run_flume(args: argparse.Namespace) -> int:
         print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
         return 130 if status == "interrupted" else 1
     return 0
+
+
+def _last_good_keeper(args: argparse.Namespace) -> LastGood:
+    """The rolling in-memory checkpoint of ``watersim run`` (``--last-good-every``)."""
+    if args.last_good_every < 1:
+        raise CliError(f"--last-good-every: must be at least 1, got {args.last_good_every}")
+    return LastGood(args.last_good_every)
+
+
+def _last_good_path(args: argparse.Namespace, out: Path) -> Path:
+    """Where a failed run writes its last good state (``--save-last-good``)."""
+    return Path(args.save_last_good) if args.save_last_good else out / "last_good.npz"
 
 
 def _martin_moyce_summary(
@@ -561,6 +584,19 @@ def build_parser() -> argparse.ArgumentParser:
         "flume cases: how often gauges.csv is rewritten (default until/20)",
     )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    run.add_argument(
+        "--save-last-good",
+        metavar="FILE",
+        help="where a run that stops early writes its last good state, a checkpoint to continue "
+        "from (default OUT/last_good.npz)",
+    )
+    run.add_argument(
+        "--last-good-every",
+        type=int,
+        default=1,
+        metavar="K",
+        help="take the in-memory last good state every K samples (default 1)",
+    )
     run.set_defaults(func=cmd_run)
 
     bench = sub.add_parser("bench", help="time the solver on a dam break scaled to N particles")
@@ -582,6 +618,8 @@ def build_parser() -> argparse.ArgumentParser:
     scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
     scene.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     scene.set_defaults(func=cmd_scene)
+
+    add_stress_parser(sub)
     return parser
 
 
