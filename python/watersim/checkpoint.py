@@ -94,7 +94,13 @@ class LastGood:
     ``every``-th call it takes ``sim.core.checkpoint()``, a copy of the state that has passed
     every monitor (they run after each step, and a sample is taken between steps). When the run
     then stops with an ``InstabilityError``, :meth:`save` writes that state; it is at most
-    ``every`` sample intervals older than the failure. The copy costs about as much as one pass
+    ``every`` sample intervals older than the failure.
+
+    One monitor is not checked after every step: the energy growth (scenes without a paddle),
+    evaluated every 50 steps. A sample between two evaluations may already be past its limit, so
+    the state is kept only if its energy, computed here as the core does (``m sum(|v|^2/2 + g z)``
+    over the fluid, against ``energy0`` and the scene's ``energy_growth_limit``), is within the
+    limit; otherwise the older state stays (:attr:`skipped` counts these). The copy costs about as much as one pass
     over the particle arrays (microseconds for thousands of particles; docs/stability.md),
     negligible against the steps between two samples.
 
@@ -109,12 +115,35 @@ class LastGood:
         self.calls = 0
         self.state: dict[str, Any] | None = None
         self.scene: dict[str, Any] | None = None
+        self.skipped = 0
+        self._mass: float | None = None
 
     def __call__(self, sim: Simulation) -> None:
         if self.calls % self.every == 0:
-            self.state = sim.core.checkpoint()
-            self.scene = sim.scene
+            state = sim.core.checkpoint()
+            if self._energy_within_limit(sim, state):
+                self.state = state
+                self.scene = sim.scene
+            else:
+                self.skipped += 1
         self.calls += 1
+
+    def _energy_within_limit(self, sim: Simulation, state: Mapping[str, Any]) -> bool:
+        """The energy-growth test of the core's monitor (``check_energy`` in
+        crates/sph-core/src/simulation.rs), on a checkpoint."""
+        scene = sim.scene
+        if scene.get("paddle") is not None:
+            return True  # the monitor is off: a paddle does work on the fluid
+        if self._mass is None:
+            self._mass = float(sim.params()["mass"])
+        gravity = float(scene.get("gravity", 9.81))
+        limit = float(scene.get("energy_growth_limit", 0.05))
+        e0, pot0 = (float(v) for v in state["energy0"])
+        fluid = np.asarray(state["kinds"]) == 0
+        pos = np.asarray(state["positions"]).reshape(-1, sim.dim)[fluid]
+        vel = np.asarray(state["velocities"]).reshape(-1, sim.dim)[fluid]
+        energy = self._mass * float(np.sum(0.5 * np.sum(vel * vel, axis=1) + gravity * pos[:, -1]))
+        return energy <= e0 + limit * max(abs(pot0), np.finfo(np.float64).tiny)
 
     @property
     def time(self) -> float | None:

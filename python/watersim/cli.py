@@ -287,8 +287,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     if not (args.sample_every > 0.0 and math.isfinite(args.sample_every)):
         raise CliError(f"--sample-every: must be a positive number, got {args.sample_every!r}")
     out = Path(args.out if args.out is not None else Path("runs") / args.case)
+    sim = builder.build()  # the core's checks (memory, ...) come before the output folder
     out.mkdir(parents=True, exist_ok=True)
-    sim = builder.build()
     until = float(builder.until)  # type: ignore[arg-type]
     is_dambreak = isinstance(builder, DamBreak)
     threads = rayon_threads()
@@ -374,8 +374,8 @@ def _run_flume(args: argparse.Namespace) -> int:
     if not (every > 0.0 and math.isfinite(every)):
         raise CliError(f"--sample-every: must be a positive number, got {every!r}")
     out = Path(args.out if args.out is not None else Path("runs") / args.case)
+    sim = builder.build()  # the core's checks (memory, ...) come before the output folder
     out.mkdir(parents=True, exist_ok=True)
-    sim = builder.build()
     threads = rayon_threads()
     say(
         f"watersim {__version__}: {args.case}, {sim.n_particles} particles "
