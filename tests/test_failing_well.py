@@ -18,7 +18,7 @@ import pytest
 import watersim as ws
 from conftest import assert_clean_failure, run_cli
 from watersim import _core
-from watersim.checkpoint import LastGood, load_checkpoint, save_checkpoint
+from watersim.checkpoint import LastGood, load_checkpoint
 
 SMALL = {"width": 0.6, "height": 0.9, "tank_length": 1.8, "tank_height": 1.2}
 

@@ -67,7 +67,8 @@ def test_stable_region_and_report(records: list[dict], tmp_path: Path) -> None:
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     path = stress.write_json(tmp_path / "stress.json", records, meta)
     data = json.loads(path.read_text())
-    assert data["meta"] == meta and [r["name"] for r in data["runs"]] == [r["name"] for r in records]
+    assert data["meta"] == meta
+    assert [r["name"] for r in data["runs"]] == [r["name"] for r in records]
 
 
 def test_wall_limit_gives_timeout_and_still_tank_measures() -> None:

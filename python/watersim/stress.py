@@ -38,7 +38,7 @@ import time
 import traceback
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -142,8 +142,15 @@ def flume_scene(params: dict[str, Any]) -> Any:
     ``runup`` (bool) and numerical fields (``dp``, ``coefsound``, ...). Wave-validity warnings
     are not errors here: the caller records them.
     """
-    from .flume import ElevationGauge, Flume, FlumeScene, Piston, PlaneBeach, RegularWave
-    from .flume import SolitaryWave
+    from .flume import (
+        ElevationGauge,
+        Flume,
+        FlumeScene,
+        Piston,
+        PlaneBeach,
+        RegularWave,
+        SolitaryWave,
+    )
 
     p = dict(params)
     beach = None
@@ -417,7 +424,8 @@ def _execute_finest(spec: RunSpec, record: dict[str, Any], start: float) -> dict
 
     For each candidate ``H/dp`` in ``params["h_over_dp"]`` (coarse to fine) it builds the case,
     times ``params["probe_steps"]`` steps after three warm-up steps, and estimates the cost of the
-    run to ``until`` as :data:`COST_MARGIN` x (wall per step) x (until / dt). It picks the finest whose estimate fits
+    run to ``until`` as :data:`COST_MARGIN` x (wall per step) x (until / dt). It picks the
+    finest whose estimate fits
     in what is left of the budget, then runs it until ``until`` or the budget, whichever comes
     first (``completed`` says which). The estimates are kept in ``record["sizing"]``.
     """
@@ -620,7 +628,8 @@ def run_matrix(
         raise ValueError("specs: run names must be unique")
     context = multiprocessing.get_context("spawn")
     pending = list(enumerate(specs))
-    running: dict[cf.Future[dict[str, Any]], tuple[int, RunSpec, cf.ProcessPoolExecutor, float]] = {}
+    Running = tuple[int, RunSpec, cf.ProcessPoolExecutor, float]  # index, spec, pool, start
+    running: dict[cf.Future[dict[str, Any]], Running] = {}
     results: dict[int, dict[str, Any]] = {}
     bar = tqdm(total=len(specs), unit="run", disable=not progress, file=sys.stderr)
     try:
@@ -729,7 +738,11 @@ def _outcome(r: dict[str, Any]) -> str:
     return "stable"
 
 
-def _table(records: list[dict[str, Any]], columns: list[tuple[str, Callable[[dict[str, Any]], str]]]) -> list[str]:
+Column = tuple[str, Callable[[dict[str, Any]], str]]
+"""A report table column: its header and how to format a record's cell."""
+
+
+def _table(records: list[dict[str, Any]], columns: list[Column]) -> list[str]:
     lines = ["| " + " | ".join(c for c, _ in columns) + " |",
              "| " + " | ".join("---" for _ in columns) + " |"]
     for r in records:
