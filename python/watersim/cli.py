@@ -5,6 +5,7 @@
     watersim run CASE [--set key=value ...] [--out DIR] [--sample-every S] [--quiet]
     watersim bench [--case dambreak2d|dambreak3d] [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
+    watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
 
 CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
 field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
