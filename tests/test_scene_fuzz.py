@@ -5,8 +5,11 @@ from __future__ import annotations
 
 import json
 import math
+import re
+import warnings
 
-from hypothesis import HealthCheck, given, settings
+import pytest
+from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 import watersim
@@ -49,7 +52,13 @@ def scenes(draw: st.DrawFn) -> dict:
     }
     for key, (lo, hi) in ranges.items():
         if draw(st.booleans()):
-            scene[key] = _mostly(draw, st.floats(lo, hi), anything)
+            bad = anything
+            if key == "coefh":
+                # a tiny positive coefh panics in the core's CellGrid::new (capacity overflow) or
+                # aborts the process on allocation: a core gap, pinned by
+                # test_tiny_coefh_is_refused_not_a_panic (xfail) and refused by the builders
+                bad = anything.filter(lambda v: not 0.0 < v < 0.5)
+            scene[key] = _mostly(draw, st.floats(lo, hi), bad)
     if draw(st.booleans()):
         scene["kernel"] = _mostly(draw, st.sampled_from(["wendland", "cubic_spline"]), st.sampled_from(["gauss", ""]))
     if draw(st.booleans()):
@@ -123,3 +132,123 @@ def test_memory_estimate_refuses_with_the_figure() -> None:
         assert str(err).startswith("dp:") and "GiB" in str(err) and "particles" in str(err)
     else:  # pragma: no cover
         raise AssertionError("a 1 mm dam break in 4 MB must be refused")
+
+
+# ------------------------------------------------------------------------------------------------
+# the wave flume: absurd wave heights, periods, beaches, gauges and paddles
+
+
+def _rarely_bad(draw: st.DrawFn, good: st.SearchStrategy, bad: st.SearchStrategy):
+    """A value from ``bad`` one time in twenty: a flume has a dozen fields, and a fair share of
+    the examples should get past the checks and run."""
+    return draw(bad) if draw(st.integers(0, 19)) == 0 else draw(good)
+
+
+@st.composite
+def flume_setups(draw: st.DrawFn) -> dict:
+    """Keyword arguments of the flume objects, mostly plausible, every one sometimes absurd."""
+    length = _rarely_bad(draw, st.floats(3.0, 6.0), anything)
+    depth = _rarely_bad(draw, st.floats(0.1, 0.4), anything)
+    kind = draw(st.sampled_from(["regular", "regular", "solitary", "irregular"]))
+    wave: dict = {"kind": kind, "height": _rarely_bad(draw, st.floats(0.005, 0.15), anything)}
+    if kind != "solitary":
+        wave["period"] = _rarely_bad(draw, st.floats(0.5, 1.5), anything)
+    beach = draw(st.sampled_from([None, "plane", "profile"]))
+    beach_args: dict = {}
+    if beach == "plane":
+        beach_args = {"toe": _rarely_bad(draw, st.floats(0.5, 3.0), anything),
+                      "slope": _rarely_bad(draw, st.floats(0.02, 0.5), anything)}
+    elif beach == "profile":
+        beach_args = {"x": (_rarely_bad(draw, st.floats(0.5, 1.5), anything),
+                            _rarely_bad(draw, st.floats(1.6, 2.8), anything)),
+                      "z": (0.0, _rarely_bad(draw, st.floats(0.0, 0.3), anything))}
+    paddle = draw(st.sampled_from(["piston1", "piston2", "flap"]))
+    hinge = _rarely_bad(draw, st.one_of(st.none(), st.floats(0.0, 0.1)), anything)
+    gauges = draw(st.lists(gauge_x, max_size=3))
+    probe = draw(st.booleans())
+    probe_point = (_rarely_bad(draw, st.floats(0.2, 1.0), anything),
+                   _rarely_bad(draw, st.floats(0.02, 0.1), anything))
+    numerics = {"dp": _rarely_bad(draw, st.floats(0.03, 0.06), anything)}
+    for key, (lo, hi) in {"coefsound": (5.0, 40.0), "cfl": (0.05, 0.5),
+                          "sample_interval": (0.01, 0.1)}.items():
+        if draw(st.booleans()):
+            numerics[key] = _rarely_bad(draw, st.floats(lo, hi), anything)
+    return {"length": length, "depth": depth, "wave": wave, "beach": beach,
+            "beach_args": beach_args, "paddle": paddle, "hinge": hinge, "gauges": gauges,
+            "probe": probe, "probe_point": probe_point, "numerics": numerics}
+
+
+gauge_x = st.one_of(st.floats(0.0, 1.0), anything, st.sampled_from([-1.0, 50.0]))
+"""Gauge positions: inside most flumes, absurd, or outside (behind the paddle, past the end)."""
+
+
+def _make_flume(a: dict) -> watersim.FlumeScene:
+    beach = None
+    if a["beach"] == "plane":
+        beach = watersim.PlaneBeach(**a["beach_args"])
+    elif a["beach"] == "profile":
+        beach = watersim.ProfileBeach(**a["beach_args"])
+    flume = watersim.Flume(length=a["length"], depth=a["depth"], beach=beach)
+    w = a["wave"]
+    if w["kind"] == "regular":
+        wave = watersim.RegularWave(height=w["height"], period=w["period"])
+    elif w["kind"] == "solitary":
+        wave = watersim.SolitaryWave(height=w["height"])
+    else:
+        wave = watersim.IrregularWave(hs=w["height"], tp=w["period"])
+    if a["paddle"] == "flap":
+        paddle = watersim.Flap(hinge_z=a["hinge"])
+    else:
+        paddle = watersim.Piston(order=2 if a["paddle"] == "piston2" else 1)
+    gauges: list = [watersim.ElevationGauge(x) for x in a["gauges"]]
+    if a["probe"]:
+        gauges.append(watersim.VelocityProbe(points=(a["probe_point"],)))
+    return flume.scene(wave, paddle=paddle, gauges=gauges, until=0.05, **a["numerics"])
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(flume_setups())
+def test_any_flume_builds_and_steps_or_raises_with_a_message(a: dict) -> None:
+    """Flume objects with absurd values: refused with ``field: reason`` (a SceneError), or built
+    and stepped. Anything else (a TypeError, an overflow warning, a pyo3 PanicException, which
+    is a BaseException) fails the test."""
+    try:
+        with warnings.catch_warnings():
+            # a wave beyond the theory's validity is a warning by design (flume.py)
+            warnings.simplefilter("ignore", watersim.wave_theory.WaveValidityWarning)
+            setup = _make_flume(a)
+        scene = setup.to_scene()
+        scene["memory_limit_bytes"] = 4_000_000
+        sim = watersim.Simulation(scene)
+    except watersim.SceneError as err:
+        assert re.match(r"^[A-Za-z_][\w.\[\]]*: \S", str(err)), str(err)
+        event(f"refused: {str(err).split(':')[0]}")
+        return
+    try:
+        sim.step(2)
+    except watersim.InstabilityError as err:
+        assert err.kind and str(err)
+        event(f"unstable: {err.kind}")
+        return
+    event("ran")
+    assert sim.steps == 2 and math.isfinite(sim.time)
+
+
+@pytest.mark.xfail(strict=True, raises=BaseException,
+                   reason="core gap: CellGrid::new panics with 'capacity overflow' for a tiny "
+                          "coefh (cells of size h, count not bounded by the memory estimate)")
+def test_tiny_coefh_is_refused_not_a_panic() -> None:
+    scene = {"dim": 3, "dp": 0.07, "coefh": 1e-6, "memory_limit_bytes": 4_000_000,
+             "tank": {"min": [0.0, 0.0, 0.0], "max": [2.0, 0.3, 1.9]},
+             "fluid": [{"min": [0.0, 0.0, 0.0], "max": [0.45, 0.07, 0.47]}]}
+    try:
+        _core.Simulation(json.dumps(scene))
+    except watersim.SceneError as err:
+        assert str(err).startswith(("coefh:", "dp:"))
+    else:  # pragma: no cover
+        raise AssertionError("a 1e-6 coefh must be refused")
+
+
+def test_builders_refuse_a_tiny_coefh() -> None:
+    with pytest.raises(watersim.SceneError, match=r"^coefh: must be at least 0\.5"):
+        watersim.DamBreak(dim=3, coefh=1e-6)

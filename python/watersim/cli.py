@@ -9,6 +9,7 @@
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
                    [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
+    watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
 
 CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
 field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
@@ -46,6 +47,7 @@ from typing import Any, TextIO
 from . import __version__
 from ._core import InstabilityError, SceneError
 from .bench_cases import DSPH_CASES, dsph_scene
+from .checkpoint import LastGood
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
     FLUME_CASES,
@@ -62,6 +64,7 @@ from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
+from .stress import add_parser as add_stress_parser
 
 __all__ = ["ALL_CASES", "CASES", "main"]
 
@@ -341,8 +344,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     name = scene.name
     if args.sample_every is None:
         args.sample_every = 0.01
+    keeper = _last_good_keeper(args)
+    sim = builder.build()  # the core's checks (memory, ...) come before the output folder
     out.mkdir(parents=True, exist_ok=True)
-    sim = builder.build()
     until = float(builder.until)  # type: ignore[arg-type]
     is_dambreak = isinstance(builder, DamBreak)
     threads = rayon_threads()
@@ -361,8 +365,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     front_file = open(out / "front.csv", "w", newline="", encoding="utf-8") if is_dambreak else None
     recorder = _Recorder(front_file, float(builder.dp), until,  # type: ignore[arg-type]
                          (lambda _line: None) if progress else say, outputs.log)
+
+    def sample(s: Simulation) -> None:
+        recorder(s)
+        keeper(s)
+
     try:
-        sim.run_schedule(until, [(args.sample_every, recorder), *outputs.schedule()],
+        sim.run_schedule(until, [(args.sample_every, sample), *outputs.schedule()],
                          progress=progress)
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
@@ -389,6 +398,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     }
     if error is not None:
         summary["error"] = error
+        summary["last_good"] = keeper.save_record(_last_good_path(args, out))
     if is_dambreak:
         assert isinstance(builder, DamBreak)
         summary["front_csv"] = "front.csv"
@@ -426,11 +436,12 @@ def _run_flume(
     builder = scene.builder
     assert isinstance(builder, FlumeScene)
     name = scene.name
+    keeper = _last_good_keeper(args)
     say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
     until = float(builder.until)  # type: ignore[arg-type]
     every = args.sample_every if args.sample_every is not None else max(until / 20.0, 1e-6)
+    sim = builder.build()  # the core's checks (memory, ...) come before the output folder
     out.mkdir(parents=True, exist_ok=True)
-    sim = builder.build()
     threads = rayon_threads()
     say(
         f"watersim {__version__}: {name}, {sim.n_particles} particles "
@@ -456,7 +467,8 @@ def _run_flume(
     status = "ok"
     error: dict[str, Any] | None = None
     try:
-        sim.run_schedule(until, [(every, on_sample), *outputs.schedule()], progress=progress)
+        sim.run_schedule(until, [(every, lambda s: (on_sample(s), keeper(s))), *outputs.schedule()],
+                         progress=progress)
     except InstabilityError as exc:
         status = str(getattr(exc, "kind", "") or "unstable")
         error = _error_record(exc)
@@ -497,6 +509,7 @@ def _run_flume(
     }
     if error is not None:
         summary["error"] = error
+        summary["last_good"] = keeper.save_record(_last_good_path(args, out))
     _write_json(out / "summary.json", summary)
     for line in headline(name, analysis):
         say(line)
@@ -505,6 +518,18 @@ def _run_flume(
         print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
         return 130 if status == "interrupted" else 1
     return 0
+
+
+def _last_good_keeper(args: argparse.Namespace) -> LastGood:
+    """The rolling in-memory checkpoint of ``watersim run`` (``--last-good-every``)."""
+    if args.last_good_every < 1:
+        raise CliError(f"--last-good-every: must be at least 1, got {args.last_good_every}")
+    return LastGood(args.last_good_every)
+
+
+def _last_good_path(args: argparse.Namespace, out: Path) -> Path:
+    """Where a failed run writes its last good state (``--save-last-good``)."""
+    return Path(args.save_last_good) if args.save_last_good else out / "last_good.npz"
 
 
 def _martin_moyce_summary(
@@ -725,6 +750,19 @@ def build_parser() -> argparse.ArgumentParser:
         help="show a progress bar on stderr (default: when stderr is a terminal)",
     )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    run.add_argument(
+        "--save-last-good",
+        metavar="FILE",
+        help="where a run that stops early writes its last good state, a checkpoint to continue "
+        "from (default OUT/last_good.npz)",
+    )
+    run.add_argument(
+        "--last-good-every",
+        type=int,
+        default=1,
+        metavar="K",
+        help="take the in-memory last good state every K samples (default 1)",
+    )
     run.set_defaults(func=cmd_run)
 
     show = sub.add_parser(
@@ -761,6 +799,8 @@ def build_parser() -> argparse.ArgumentParser:
     scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
     scene.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     scene.set_defaults(func=cmd_scene)
+
+    add_stress_parser(sub)
     return parser
 
 

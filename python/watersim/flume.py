@@ -114,6 +114,14 @@ RUNUP_OFFSET_DP = 1.5
 
 _TOL = 1e-9
 
+SOLITARY_MAX_H_OVER_D = 0.83
+"""Highest solitary wave, H/d about 0.83 (Longuet-Higgins & Fenton 1974): a taller one does not
+exist, and Goring's paddle motion for it is meaningless."""
+
+MAX_PARTICLES = 1e10
+"""Fluid particle count past which a flume is refused before anything is derived from dp (far
+beyond any machine's memory; the core's estimate then refuses what does not fit this one)."""
+
 
 # ------------------------------------------------------------------------------------------------
 # small checks
@@ -873,6 +881,11 @@ class FlumeScene(SceneBuilder):
             )
         if isinstance(wave, SolitaryWave) and not isinstance(paddle, Piston):
             raise SceneError("paddle: a solitary wave (Goring 1978) needs a Piston")
+        if isinstance(wave, SolitaryWave) and wave.height > SOLITARY_MAX_H_OVER_D * depth:
+            raise SceneError(
+                f"wave.height: H/d = {wave.height / depth:.3g} is above the highest solitary "
+                f"wave, H/d = {SOLITARY_MAX_H_OVER_D} (Longuet-Higgins & Fenton 1974)"
+            )
 
     def _validate_geometry(self) -> None:
         flume = self.flume
@@ -892,7 +905,20 @@ class FlumeScene(SceneBuilder):
             )
         if flume.length < 4.0 * dp:
             raise SceneError(f"dp: {dp:g} m is too coarse for a flume {flume.length:g} m long")
+        across = 1.0 if flume.width is None else flume.width / dp
+        n_fluid = flume.length / dp * flume.depth / dp * across
+        if not n_fluid <= MAX_PARTICLES:
+            raise SceneError(f"dp: {dp:g} m would need about {n_fluid:.3g} fluid particles; "
+                             "use a larger dp")
         law = self.law
+        if not (math.isfinite(law.forward) and math.isfinite(law.backward)):
+            raise SceneError(f"wave: the paddle motion is not finite (excursion {law.forward!r} m)")
+        if law.forward + 2.0 * dp >= flume.length:
+            raise SceneError(
+                f"paddle: its forward excursion ({law.forward:.4g} m, plus 2 dp) reaches the "
+                f"far wall (length = {flume.length:g} m); lower the wave height or lengthen "
+                "the flume"
+            )
         height = self.tank_height
         px, pz = self.bed_profile
         # The bed must be flat where the paddle moves.
@@ -1099,7 +1125,10 @@ class FlumeScene(SceneBuilder):
     @functools.cached_property
     def law(self) -> _Law:
         """The paddle law (the core's JSON) and its extent."""
-        return self._make_law()
+        # an absurd wave overflows the theory's formulas: the non-finite excursion that results
+        # is refused, naming the wave, by _validate_geometry
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            return self._make_law()
 
     def _make_law(self) -> _Law:
         wave, paddle, depth, g = self.wave, self.paddle, self.flume.depth, self.gravity

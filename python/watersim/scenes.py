@@ -64,6 +64,11 @@ DIFFUSION_MODELS: tuple[str, ...] = ("none", "molteni", "fourtakas")
 INTEGRATORS: tuple[str, ...] = ("symplectic", "verlet")
 """Time integration schemes the core knows."""
 
+MIN_COEFH = 0.5
+"""Smallest ``coefh`` accepted. The core sizes its cell grid by h and does not bound the cell
+count, so a tiny coefh makes it panic or abort on allocation (a core gap, see
+docs/stability.md); DualSPHysics' cases use 0.75-2."""
+
 
 # ------------------------------------------------------------------------------------------------
 # Field checks. Each raises SceneError("field: reason").
@@ -191,7 +196,12 @@ class SceneBuilder:
             raise SceneError(f"dim: must be 2 or 3, got {self.dim!r}")
         _positive("dp", self.dp)
         _choice("kernel", self.kernel, KERNELS)
-        _positive("coefh", self.coefh)
+        if _positive("coefh", self.coefh) < MIN_COEFH:
+            raise SceneError(
+                f"coefh: must be at least {MIN_COEFH} (h = coefh sqrt(dim) dp), got "
+                f"{self.coefh!r}: a smaller h reaches no more than the nearest neighbours, and "
+                "the core's cell grid (cells of size h) outgrows memory"
+            )
         _positive("coefsound", self.coefsound)
         _positive("gamma", self.gamma)
         cfl = _positive("cfl", self.cfl)
