@@ -5,6 +5,7 @@
     watersim run CASE [--set key=value ...] [--out DIR] [--sample-every S] [--quiet]
     watersim bench [--case dambreak2d|dambreak3d] [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
+    watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
 
 CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
 field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
@@ -48,6 +49,7 @@ from .flume_cases import (
 from .measure import front_error, front_position, water_column_height
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
+from .validation import sweep as _validation
 
 __all__ = ["ALL_CASES", "CASES", "main"]
 
@@ -582,15 +584,18 @@ def build_parser() -> argparse.ArgumentParser:
     scene.add_argument("case", metavar="CASE", help=f"one of: {', '.join(ALL_CASES)}")
     scene.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     scene.set_defaults(func=cmd_scene)
+
+    _validation.add_parser(sub)  # watersim validate (watersim.validation.sweep)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``watersim`` command; returns the exit code."""
     args = build_parser().parse_args(argv)
+    args.argv = list(sys.argv[2:] if argv is None else argv[1:])  # for reports
     try:
         return int(args.func(args))
-    except (CliError, SceneError) as exc:
+    except (CliError, SceneError, _validation.ValidateError) as exc:
         print(f"watersim: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:
