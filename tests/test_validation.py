@@ -17,6 +17,7 @@ from watersim.validation.report import (
     cheapest_meeting,
     convergence_order,
     pareto_front,
+    self_convergence,
     write_report,
 )
 from watersim.validation.sweep import ValidateError, parse_resolutions, plan, run_sweep
@@ -182,6 +183,23 @@ def test_pareto_front_and_cheapest_run() -> None:
     assert [r["resolution"] for r in front] == [10, 20, 40]
     assert cheapest_meeting(runs, "pressure_rms", 0.025)["resolution"] == 20
     assert cheapest_meeting(runs, "pressure_rms", 0.001) is None
+
+
+def test_self_convergence_of_synthetic_fronts() -> None:
+    t = np.linspace(0.0, 0.7, 71)
+    exact = 1.0 + 4.0 * t**2
+
+    def run(dp: float) -> dict:
+        r = _rec(1.0 / dp, dp, 1.0, 0.1)
+        r["details"] = {"front_t": list(t), "front_x": list(exact * (1.0 + 3.0 * dp**2))}
+        return r
+
+    out = self_convergence([run(0.1), run(0.05), run(0.0125)])
+    assert [r["dp"] for r, _ in out] == [0.1, 0.05]
+    ref = exact * (1.0 + 3.0 * 0.0125**2)
+    for r, diff in out:
+        rel = exact * (1.0 + 3.0 * r["dp"] ** 2) / ref - 1.0
+        assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
 
 
 def test_report_writes_readme_and_plots(tmp_path) -> None:

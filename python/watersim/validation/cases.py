@@ -60,7 +60,7 @@ class _Progress:
         self.sim = sim
         self.bar: Any = None
         if enabled:
-            from tqdm import tqdm
+            from tqdm import tqdm  # type: ignore[import-untyped]
 
             self.bar = tqdm(total=round(until, 6), desc=label, unit="s(sim)", leave=False,
                             dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s "
@@ -208,6 +208,7 @@ class Case:
         target_text: the target in words, for the report.
         runner: ``runner(case, resolution, quick, progress) -> record``.
         report_note: what the report should say about the case's metrics.
+        report_details: keys of the records' ``details`` the report tabulates.
     """
 
     name: str
@@ -222,6 +223,7 @@ class Case:
     target_text: str
     runner: Callable[[Case, float, bool, bool], dict[str, Any]]
     report_note: str = ""
+    report_details: tuple[str, ...] = ()
 
     def dp(self, resolution: float) -> float:
         """Particle spacing [m] of a resolution."""
@@ -580,7 +582,7 @@ def _run_bar(case: Case, res: float, quick: bool, progress: bool) -> dict[str, A
     phases = {}
     t, eta, _ = sim.gauges.uniform()
     rows_sim, rows_ref, ph_sim, ph_ref, xs = [], [], [], [], []
-    for j, g in enumerate(result["gauges"]):
+    for g in result["gauges"]:
         ref = measured.get(round(g["x"], 1))
         if ref is None or not g.get("harmonics") or any(a is None for a in g["harmonics"]):
             continue
@@ -644,7 +646,8 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
     t_max = float(t[int(np.nanargmax(r))]) if r is not None and np.any(np.isfinite(r)) else None
     cot = 1.0 / SOLITARY_SLOPE
     details = {"runup_max": runup, "runup_law": law, "H_over_d": height / depth,
-               "cot_beta": cot, "runup_ceiling": scene.tank_height - depth, "t_runup_max": t_max, "until": scene.until,
+               "cot_beta": cot, "runup_ceiling": scene.tank_height - depth,
+               "t_runup_max": t_max, "until": scene.until,
                "non_breaking_limit_H_over_d": 0.818 * cot ** (-10.0 / 9.0), "notes": notes,
                "analysis_notes": result.get("notes", [])}
     errors = {"runup": m.relative_error(runup, law) if runup is not None else None}
@@ -735,15 +738,18 @@ CASES: dict[str, Case] = {
         Case("tank2d", "still water, 2D tank 1.0 m x 0.5 m deep, 1 s",
              "hydrostatics p = rho0 g (d - z); fluid at rest", "depth / dp", 0.5,
              (10.0, 20.0, 30.0), (10.0,), "pressure_rms", 0.01,
-             "RMS pressure error <= 1 % of rho0 g d", _run_tank),
+             "RMS pressure error <= 1 % of rho0 g d", _run_tank,
+             report_details=("surface_mean_minus_depth",)),
         Case("dambreak2d", "2D dam break, 1 m x 2 m column (n^2 = 2), to 0.7 s",
              "Martin & Moyce (1952) surge front (lethe set)", "column width / dp", 1.0,
              (10.0, 20.0, 40.0), (8.0,), "front_rms", 0.10,
-             "RMS relative front error <= 10 %", _run_dambreak, _DAMBREAK_NOTE),
+             "RMS relative front error <= 10 %", _run_dambreak, _DAMBREAK_NOTE,
+             report_details=("mean_lead_s", "best_shift_s", "n_points", "front_final")),
         Case("dambreak3d", "3D dam break, narrow tank (0.5 m wide, 3 m long), to 0.6 s",
              "Martin & Moyce (1952) surge front (lethe set)", "column width / dp", 1.0,
              (6.0, 8.0, 12.0), (6.0,), "front_rms", 0.15,
-             "RMS relative front error <= 15 %", _run_dambreak, _DAMBREAK_NOTE),
+             "RMS relative front error <= 15 %", _run_dambreak, _DAMBREAK_NOTE,
+             report_details=("mean_lead_s", "best_shift_s", "n_points", "front_final")),
         Case("standing2d", "first sloshing mode, 1.0 m tank, d = 0.5 m, a = 0.05 m",
              "linear theory omega^2 = g k tanh(k d)", "wave height 2a / dp", 0.1,
              (2.0, 3.0, 4.5), (2.0,), "period", 0.02,
@@ -752,7 +758,9 @@ CASES: dict[str, Case] = {
              "`StandingWaveTank`), so the initial first-mode amplitude differs from a = 0.05 m "
              "(`details.amplitude_initial`). `decay_per_period` is the fraction of the "
              "amplitude lost per period; inviscid linear theory has none (the physical viscous "
-             "decay of this tank is far below 1 % per period)."),
+             "decay of this tank is far below 1 % per period).",
+             report_details=("period_linear", "period_simulated", "amplitude_initial",
+                             "decay_rate")),
         Case("flume2d", "flat flume, regular wave H = 0.05 m, T = 1.2 s, d = 0.3 m",
              "target height; linear and Stokes third-order wavelength", "wave height / dp", 0.05,
              (1.0, 1.4, 2.0), (1.0,), "H_3L", 0.10,
@@ -761,7 +769,9 @@ CASES: dict[str, Case] = {
              "target H. `height_loss_per_L`: fraction of the height lost per wavelength, fitted "
              "over the gauges at 1, 2 and 3 L. `wavelength_*`: wavelength from the "
              "first-harmonic phases of the six flat-floor gauges against linear and Stokes "
-             "third-order dispersion (Stokes second order has the linear wavelength)."),
+             "third-order dispersion (Stokes second order has the linear wavelength).",
+             report_details=("H_1L", "H_2L", "H_3L", "wavelength_measured",
+                             "wavelength_linear", "wavelength_stokes3")),
         Case("secondorder2d", "flume2d with first- and second-order pistons",
              "Stokes second-order bound harmonic (constant along the flume)", "wave height / dp",
              0.05, (1.0, 1.2, 1.4), (1.0,), "a2_spread_order2", 0.25,
@@ -770,7 +780,8 @@ CASES: dict[str, Case] = {
              "Each run is two simulations (first- and second-order piston; wall time is their "
              "sum). `a2_spread_orderN`: (max - min) of the second-harmonic amplitude over the "
              "six flat-floor gauges, over the Stokes bound amplitude; a spurious free second "
-             "harmonic makes it large. `a2_mean_orderN`: the mean amplitude against the bound."),
+             "harmonic makes it large. `a2_mean_orderN`: the mean amplitude against the bound.",
+             report_details=("a2_bound",)),
         Case("bar2d", "Beji & Battjes (1993) submerged bar, H = 0.02 m, T = 2.02 s",
              "Beji & Battjes (1993) gauge records (waves2Foam)", "wave height / dp", 0.02,
              (0.25, 0.33, 0.4), (0.25,), "harmonic1_amplitude", 0.10,
@@ -787,7 +798,8 @@ CASES: dict[str, Case] = {
              "Set up non-breaking for the law: H/d = 0.15 on a 1:3 beach, below the "
              "non-breaking limit H/d < 0.818 (cot beta)^(-10/9) = 0.24 (Synolakis 1987 as "
              "usually quoted). The built-in solitary2d default (H/d = 0.3 on 1:19.85) breaks, "
-             "and the law does not apply to it."),
+             "and the law does not apply to it.",
+             report_details=("runup_max", "runup_law", "t_runup_max", "until")),
         Case("kimmoun2d", "seed 001: regular waves plunging on a 1:15 beach, about 16 periods",
              "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
              "wave height / dp", 0.114, (1.2, 1.7, 2.3), (1.2,), "breaker_height", 0.10,
@@ -797,7 +809,9 @@ CASES: dict[str, Case] = {
              "the shoreline (x = 12.095 m). `breaker_height`: that height against H_B = 0.14 m. "
              "`runup_vs_schuttrumpf`: mean run-up R/H against Schuttrumpf's R/H = 2.25 "
              "tanh(xi/2) with the seed's xi = 0.31 (the seed finds its SPH closest to that "
-             "formula; the other formulas and the seed's own SPH value are in runs.json)."),
+             "formula; the other formulas and the seed's own SPH value are in runs.json).",
+             report_details=("breaking_x", "breaker_height", "breaking_onset_mccowan_x",
+                             "runup_over_H")),
     )
 }
 """The validation cases by name, in report order."""

@@ -264,7 +264,7 @@ def damped_oscillation_fit(
     Raises:
         ValueError: fewer than 8 samples or a fit that does not converge.
     """
-    from scipy.optimize import curve_fit
+    from scipy.optimize import curve_fit  # type: ignore[import-untyped]
 
     tt = np.asarray(t, dtype=np.float64).ravel()
     yy = np.asarray(y, dtype=np.float64).ravel()

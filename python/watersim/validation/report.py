@@ -21,10 +21,15 @@ __all__ = [
     "convergence_order",
     "ok_runs",
     "pareto_front",
+    "self_convergence",
     "write_report",
 ]
 
 Record = Mapping[str, Any]
+
+FLAT_ORDER = 0.2
+"""An observed order below this in magnitude is reported as a level error, neither falling nor
+rising with dp."""
 
 
 def _error(record: Record, metric: str) -> float | None:
@@ -93,6 +98,38 @@ def cheapest_meeting(records: Sequence[Record], metric: str, target: float) -> R
     """The finished run with the smallest wall time whose ``metric`` is at most ``target``."""
     good = [r for r in ok_runs(records, metric) if (_error(r, metric) or 0.0) <= target]
     return min(good, key=lambda r: float(r["wall_s"])) if good else None
+
+
+def self_convergence(runs: Sequence[Record], t_key: str = "front_t", x_key: str = "front_x"
+                     ) -> list[tuple[Record, float]]:
+    """RMS relative difference of each run's time series to the finest run's.
+
+    For records whose ``details`` hold a series (``t_key``, ``x_key``, e.g. the dam-break
+    front), each coarser finished run is interpolated at the finest run's sample times (within
+    its own time range) and ``sqrt(mean(((x - x_finest) / x_finest)^2))`` is taken. This needs
+    no reference data: it falls with dp when the solution converges, whatever the data say.
+
+    Returns:
+        (record, difference) for every finished run but the finest, coarsest first.
+    """
+    series = [r for r in runs if r.get("status") == "ok"
+              and len((r.get("details") or {}).get(t_key) or []) >= 2]
+    if len(series) < 2:
+        return []
+    series.sort(key=lambda r: -float(r["dp"]))
+    finest = series[-1]
+    tf = np.asarray(finest["details"][t_key], dtype=float)
+    xf = np.asarray(finest["details"][x_key], dtype=float)
+    out = []
+    for r in series[:-1]:
+        t = np.asarray(r["details"][t_key], dtype=float)
+        x = np.asarray(r["details"][x_key], dtype=float)
+        sel = (tf >= t[0]) & (tf <= t[-1]) & np.isfinite(xf) & (xf != 0.0)
+        if np.count_nonzero(sel) < 2:
+            continue
+        diff = (np.interp(tf[sel], t, x) - xf[sel]) / xf[sel]
+        out.append((r, float(np.sqrt(np.mean(diff**2)))))
+    return out
 
 
 # ------------------------------------------------------------------------------------------------
@@ -231,6 +268,15 @@ def write_report(
             body.append(f"| {_fmt(r['resolution'])} | {_fmt(r['dp'], 4)} | {r['n_particles']} | "
                         f"{r['steps']} | {_fmt(r['sim_time'])} | {_fmt(r['wall_s'])} | "
                         f"{_fmt(r.get('cpu_s'))} | {status} | " + " | ".join(errs) + " |")
+        shown = [k for k in getattr(case, "report_details", ()) if any(
+            k in (r.get("details") or {}) for r in runs)]
+        if shown:
+            body += ["", "Measured values (`details` in runs.json):", "",
+                     "| resolution | " + " | ".join(shown) + " |", "|" + "---|" * (1 + len(shown))]
+            for r in runs:
+                d = r.get("details") or {}
+                body.append(f"| {_fmt(r['resolution'])} | "
+                            + " | ".join(_fmt(d.get(k), 4) for k in shown) + " |")
         failed = [r for r in runs if r["status"] != "ok"]
         for r in failed:
             body.append(f"\n- resolution {_fmt(r['resolution'])}: {r['status']}: "
@@ -243,9 +289,27 @@ def write_report(
             if math.isnan(order.order):
                 body.append(f"- `{k}`: not enough finished runs")
                 continue
-            trend = "falls" if order.falls else "does NOT fall"
+            if abs(order.order) < FLAT_ORDER:
+                trend = f"stays about level (|p| < {FLAT_ORDER})"
+            else:
+                trend = ("falls" if order.falls else "does NOT fall") + \
+                    " from the coarsest to the finest run"
             body.append(f"- `{k}`: p = {order.order:.2f} over {order.n_runs} runs; the error "
-                        f"{trend} from the coarsest to the finest run")
+                        f"{trend}")
+        selfconv = self_convergence(runs)
+        if selfconv:
+            finest = min((r for r in runs if r.get("status") == "ok"),
+                         key=lambda r: float(r["dp"]))
+            parts = ", ".join(f"resolution {_fmt(r['resolution'])}: {_fmt(d)}"
+                              for r, d in selfconv)
+            text = (f"Self-convergence (a labelled extra, no reference data): RMS relative "
+                    f"difference of the front to the finest run's (resolution "
+                    f"{_fmt(finest['resolution'])}): {parts}")
+            if len(selfconv) >= 2:
+                order = convergence_order([float(r["dp"]) for r, _ in selfconv],
+                                          [d for _, d in selfconv])
+                text += f"; observed order {order.order:.2f}"
+            body += ["", text + "."]
         answer = "-"
         if case is not None and primary is not None:
             best = cheapest_meeting(runs, primary, case.target)

@@ -156,7 +156,7 @@ def run_sweep(
 
     bar: Any = None
     if progress:
-        from tqdm import tqdm
+        from tqdm import tqdm  # type: ignore[import-untyped]
 
         bar = tqdm(total=len(tasks), desc="validation runs", unit="run")
     try:
@@ -196,7 +196,7 @@ def _header(args: argparse.Namespace, records: Sequence[dict[str, Any]]) -> list
     command = "watersim validate " + " ".join(args.argv) if args.argv else "watersim validate"
     dates = sorted(r["finished_at"] for r in records if r.get("finished_at"))
     machine = next((r["machine"] for r in records if r.get("machine")), machine_info())
-    threads = sorted({r.get("threads") for r in records if r.get("threads") is not None})
+    threads = sorted({int(r["threads"]) for r in records if r.get("threads") is not None})
     lines = [f"- Command: `{command}`"]
     if dates:
         lines.append(f"- Runs finished between {dates[0]} and {dates[-1]} (UTC)")
