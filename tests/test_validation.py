@@ -239,6 +239,9 @@ def test_bad_input_is_refused_before_running() -> None:
         run_case("tank2d", 0.0)
     assert main(["validate", "nope"]) == 2
     assert main(["validate", "--from-json", "x.json", "--quick", "--report", "r"]) == 2
+    assert main(["validate", "tank2d", "--jobs", "2", "--scheduler", "tcp://x:1"]) == 2
+    assert main(["validate", "tank2d", "--jobs", "0"]) == 2
+    assert main(["validate", "tank2d", "--note", "n"]) == 2  # a note needs --report
 
 
 def test_run_case_reports_a_scene_it_cannot_build() -> None:

@@ -193,7 +193,16 @@ def run_sweep(
 
 def _header(args: argparse.Namespace, records: Sequence[dict[str, Any]]) -> list[str]:
     """Report lines: the command, the dates, the machine."""
-    command = "watersim validate " + " ".join(args.argv) if args.argv else "watersim validate"
+    shown: list[str] = []
+    skip = False
+    for item in args.argv or []:  # the notes are printed below, not in the command
+        if skip:
+            skip = False
+        elif item == "--note":
+            skip = True
+        elif not item.startswith("--note="):
+            shown.append(item)
+    command = " ".join(["watersim validate", *shown])
     dates = sorted(r["finished_at"] for r in records if r.get("finished_at"))
     machine = next((r["machine"] for r in records if r.get("machine")), machine_info())
     threads = sorted({int(r["threads"]) for r in records if r.get("threads") is not None})
@@ -242,6 +251,9 @@ def cmd_validate(args: argparse.Namespace) -> int:
         tasks = plan(args.cases, resolutions, args.quick)
         if args.jobs < 1:
             raise ValidateError(f"--jobs: must be at least 1, got {args.jobs}")
+        if args.scheduler is not None and args.jobs != 1:
+            raise ValidateError("--jobs: not used with --scheduler (the cluster's workers run "
+                                "the sweep)")
         if args.json is not None:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         progress = sys.stderr.isatty()
