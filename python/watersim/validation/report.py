@@ -180,8 +180,16 @@ def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: s
         front = pareto_front(runs, primary)
         if front:
             ax1.step([float(r["wall_s"]) for r in front], [_error(r, primary) for r in front],
-                     where="post", color="k", lw=2.5, alpha=0.35,
-                     label=f"Pareto front ({primary})")
+                     where="post", color="k", lw=2.5, alpha=0.35, marker="o", ms=12,
+                     mfc="none", label=f"Pareto front ({primary})")
+    selfconv = self_convergence(runs)
+    if selfconv:
+        dps = [float(r["dp"]) for r, _ in selfconv]
+        diffs = [d for _, d in selfconv]
+        label = "front vs finest run (self-convergence)"
+        if len(selfconv) >= 2:
+            label += f": order {convergence_order(dps, diffs).order:.2f}"
+        ax2.loglog(dps, diffs, "s--", color="0.3", label=label)
     ax1.set_xlabel("wall time [s]")
     ax1.set_ylabel("error [-] (metre for *_m)")
     ax1.set_title(f"{name}: error against wall time")
