@@ -5,7 +5,9 @@ A case's ``run(resolution, quick=False, progress=False)`` returns a run record (
 dict, see :func:`make_record`). ``resolution`` is a number of particles per characteristic
 length of the case (``Case.resolution_meaning``: the column width over dp for dam breaks, the
 wave height over dp for waves, the depth over dp for the still tank), so ``dp = length /
-resolution``. ``quick`` shortens the simulated time where the metric allows it.
+resolution``. ``quick`` shortens the simulated time where the metric allows it (tank2d,
+the dam breaks, standing2d, bar2d, kimmoun2d); flume2d, secondorder2d and solitary2d keep theirs,
+already the shortest their metrics need, and run only at their coarse quick resolution.
 
 References (see ``watersim/data/SOURCES.md``): Martin & Moyce (1952) dam-break front; linear
 theory and Stokes third-order dispersion; Beji & Battjes (1993) bar records; Synolakis (1987)
@@ -465,9 +467,10 @@ def _flume_run(case: Case, scene: FlumeScene, res: float, progress: bool, label:
     return sim, status, message, sim.analyse()
 
 
-def _flume2d_items(dp: float, order: int, quick: bool) -> tuple[FlumeScene, list[str]]:
+def _flume2d_items(dp: float, order: int) -> tuple[FlumeScene, list[str]]:
     """flume2d (d = 0.3 m, T = 1.2 s, H = 0.05 m) at dp, until = ramp + arrival at 3 L +
-    3.5 periods (2.5 periods of steady record at 3 L)."""
+    3.5 periods (2.5 periods of steady record at 3 L; the same with ``quick``, which the
+    height at 3 L needs)."""
     items = {"dp": repr(dp), "paddle.order": str(order)}
 
     def until(s: FlumeScene) -> float:
@@ -479,7 +482,7 @@ def _flume2d_items(dp: float, order: int, quick: bool) -> tuple[FlumeScene, list
 
 def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
     dp = case.dp(res)
-    scene, notes = _flume2d_items(dp, 2, quick)
+    scene, notes = _flume2d_items(dp, 2)
     clock = _Clock()
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     assert scene.period is not None and scene.wavelength is not None
@@ -527,7 +530,7 @@ def _run_secondorder(case: Case, res: float, quick: bool, progress: bool) -> dic
     n_particles = steps = 0
     sim: FlumeSimulation | None = None
     for order in (2, 1):
-        scene, notes = _flume2d_items(dp, order, quick)
+        scene, notes = _flume2d_items(dp, order)
         assert scene.wavelength is not None
         sim, st, msg, result = _flume_run(case, scene, res, progress,
                                           f"{case.name} {res:g} order {order}")
@@ -623,7 +626,7 @@ SOLITARY_SLOPE = 1.0 / 3.0
 def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
     """solitary2d set up non-breaking: d = 0.3 m, H/d = 0.15 (H = 0.045 m), a 1:3 beach from
     x = 3 m, flume 4.8 m (walls d + d/2 = 0.45 m high, above the law's run-up of 0.137 m);
-    until = half the paddle motion + travel to the shoreline + 1 s."""
+    until = half the paddle motion + travel to the shoreline + 1 s, the same with ``quick``."""
     dp = case.dp(res)
     depth, height = 0.3, case.length
     items = {"dp": repr(dp), "wave.height": repr(height), "beach.slope": repr(SOLITARY_SLOPE),
