@@ -10,6 +10,7 @@
                    [--particles N] [--steps K] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
+    watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
 
 CASE is one of ``dambreak2d``, ``dambreak3d``, ``tank2d``, ``tank3d``; ``--set`` overrides any
 field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Tank`). Bad input
@@ -65,6 +66,7 @@ from .scenefile import load as load_scene_file
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 from .stress import add_parser as add_stress_parser
+from .validation import sweep as _validation
 
 __all__ = ["ALL_CASES", "CASES", "main"]
 
@@ -801,15 +803,17 @@ def build_parser() -> argparse.ArgumentParser:
     scene.set_defaults(func=cmd_scene)
 
     add_stress_parser(sub)
+    _validation.add_parser(sub)  # watersim validate (watersim.validation.sweep)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``watersim`` command; returns the exit code."""
     args = build_parser().parse_args(argv)
+    args.argv = list(sys.argv[2:] if argv is None else argv[1:])  # for reports
     try:
         return int(args.func(args))
-    except (CliError, SceneError) as exc:
+    except (CliError, SceneError, _validation.ValidateError) as exc:
         print(f"watersim: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:

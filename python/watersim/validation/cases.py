@@ -1,0 +1,828 @@
+"""The validation cases: each builds its scene from the existing builders at a resolution, runs
+it, and measures its errors against a reference.
+
+A case's ``run(resolution, quick=False, progress=False)`` returns a run record (a JSON-ready
+dict, see :func:`make_record`). ``resolution`` is a number of particles per characteristic
+length of the case (``Case.resolution_meaning``: the column width over dp for dam breaks, the
+wave height over dp for waves, the depth over dp for the still tank), so ``dp = length /
+resolution``. ``quick`` shortens the simulated time where the metric allows it (tank2d,
+the dam breaks, standing2d, bar2d, kimmoun2d); flume2d, secondorder2d and solitary2d keep theirs,
+already the shortest their metrics need, and run only at their coarse quick resolution.
+
+References (see ``watersim/data/SOURCES.md``): Martin & Moyce (1952) dam-break front; linear
+theory and Stokes third-order dispersion; Beji & Battjes (1993) bar records; Synolakis (1987)
+run-up law; seed 001 (Roselli et al.) for Kimmoun & Branger (2007) breaking.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+import warnings
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from .. import analysis as an
+from .. import wave_theory as wt
+from .._core import InstabilityError, SceneError
+from ..flume import FlumeScene, FlumeSimulation
+from ..flume_cases import BEJI_BATTJES_FILES, _load_csv, flume_builder
+from ..measure import front_error, front_position
+from ..scenes import DamBreak, Tank, _positive
+from ..simulation import Simulation
+from . import metrics as m
+
+__all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
+
+
+# ------------------------------------------------------------------------------------------------
+# running
+
+
+def _threads() -> int:
+    """Threads rayon uses in this process (``RAYON_NUM_THREADS`` or the CPUs available)."""
+    env = os.environ.get("RAYON_NUM_THREADS", "").strip()
+    if env.isdigit() and int(env) > 0:
+        return int(env)
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+class _Progress:
+    """A tqdm bar over simulated time, with dt and particle-steps per second, fed by the
+    callback of :meth:`watersim.Simulation.run`."""
+
+    def __init__(self, sim: Simulation, until: float, label: str, enabled: bool) -> None:
+        self.sim = sim
+        self.bar: Any = None
+        if enabled:
+            from tqdm import tqdm  # type: ignore[import-untyped]
+
+            self.bar = tqdm(total=round(until, 6), desc=label, unit="s(sim)", leave=False,
+                            dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s "
+                            "[{elapsed}<{remaining}{postfix}]")
+        self.wall0 = time.perf_counter()
+        self.steps0 = sim.steps
+
+    def update(self) -> None:
+        if self.bar is None:
+            return
+        wall = time.perf_counter() - self.wall0
+        rate = self.sim.n_particles * (self.sim.steps - self.steps0) / wall if wall > 0 else 0.0
+        self.bar.n = round(self.sim.time, 6)
+        self.bar.set_postfix_str(f"t={self.sim.time:.3f} s, dt={self.sim.dt:.2e} s, "
+                                 f"{rate:.3g} particle-steps/s", refresh=True)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def advance(
+    sim: Simulation,
+    until: float,
+    every: float,
+    on_sample: Callable[[Simulation], None] | None = None,
+    progress: bool = False,
+    label: str = "",
+) -> tuple[str, str | None]:
+    """Run ``sim`` to ``until`` [s], calling ``on_sample`` every ``every`` [s] of simulated time.
+
+    Returns:
+        (status, message): ``("ok", None)``, ``(kind, message)`` when a stability monitor
+        stopped the run (the samples so far are kept), or ``("error", message)``.
+    """
+    bar = _Progress(sim, until, label, progress)
+
+    def callback(s: Simulation) -> None:
+        if on_sample is not None:
+            on_sample(s)
+        bar.update()
+
+    try:
+        sim.run(until, callback_every=every, callback=callback)
+    except InstabilityError as exc:
+        return str(getattr(exc, "kind", "") or "unstable"), str(exc)
+    except RuntimeError as exc:
+        return "error", f"{type(exc).__name__}: {exc}"
+    finally:
+        bar.close()
+    return "ok", None
+
+
+def make_record(
+    case: str,
+    resolution: float,
+    dp: float,
+    sim: Simulation | None,
+    wall_s: float,
+    cpu_s: float,
+    status: str,
+    message: str | None,
+    errors: Mapping[str, float | None],
+    details: Mapping[str, Any],
+    n_sims: int = 1,
+    particles_total: int | None = None,
+    steps_total: int | None = None,
+) -> dict[str, Any]:
+    """One run's record: the fields ``watersim validate`` writes for every run.
+
+    ``errors`` maps metric names to non-negative errors (smaller is better; None when a metric
+    could not be computed); ``details`` holds the measured values behind them.
+    """
+    clean: dict[str, float | None] = {}
+    for key, value in errors.items():
+        v = None if value is None else float(value)
+        clean[key] = v if v is not None and math.isfinite(v) else None
+    return {
+        "case": case,
+        "resolution": float(resolution),
+        "dp": float(dp),
+        "n_particles": int(particles_total if particles_total is not None
+                           else (sim.n_particles if sim is not None else 0)),
+        "steps": int(steps_total if steps_total is not None
+                     else (sim.steps if sim is not None else 0)),
+        "sim_time": float(sim.time) if sim is not None else 0.0,
+        "wall_s": float(wall_s),
+        "cpu_s": float(cpu_s),
+        "threads": _threads(),
+        "n_sims": n_sims,
+        "errors": clean,
+        "status": status,
+        "message": message,
+        "details": dict(details),
+    }
+
+
+class _Clock:
+    """Wall and process CPU time since creation [s]."""
+
+    def __init__(self) -> None:
+        self.wall0 = time.perf_counter()
+        self.cpu0 = time.process_time()
+
+    def wall(self) -> float:
+        return time.perf_counter() - self.wall0
+
+    def cpu(self) -> float:
+        return time.process_time() - self.cpu0
+
+
+def _quiet_flume(case: str, items: Mapping[str, str]) -> tuple[FlumeScene, list[str]]:
+    """A flume case's scene with ``--set``-style items, its warnings returned as notes."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        scene = flume_builder(case, dict(items))
+    return scene, [f"{w.category.__name__}: {w.message}" for w in caught]
+
+
+def _with_until(case: str, items: dict[str, str], until: Callable[[FlumeScene], float]
+                ) -> tuple[FlumeScene, list[str]]:
+    """The scene built twice: once to compute ``until`` from it, once with that ``until``."""
+    probe, _ = _quiet_flume(case, items)
+    return _quiet_flume(case, {**items, "until": repr(round(until(probe), 3))})
+
+
+# ------------------------------------------------------------------------------------------------
+# Case
+
+
+@dataclass(frozen=True)
+class Case:
+    """A validation case.
+
+    Attributes:
+        name: the case's name (``watersim validate NAME``).
+        description: one line.
+        reference: where the reference comes from.
+        resolution_meaning: what the resolution counts, e.g. ``"column width / dp"``.
+        length: the characteristic length [m]: ``dp = length / resolution``.
+        resolutions: the full sweep's resolutions.
+        quick_resolutions: the ``--quick`` sweep's resolutions.
+        primary: the metric the accuracy target applies to.
+        target: the accuracy target of ``primary`` (an error at most this large meets it).
+        target_text: the target in words, for the report.
+        runner: ``runner(case, resolution, quick, progress) -> record``.
+        report_note: what the report should say about the case's metrics.
+        report_details: keys of the records' ``details`` the report tabulates.
+    """
+
+    name: str
+    description: str
+    reference: str
+    resolution_meaning: str
+    length: float
+    resolutions: tuple[float, ...]
+    quick_resolutions: tuple[float, ...]
+    primary: str
+    target: float
+    target_text: str
+    runner: Callable[[Case, float, bool, bool], dict[str, Any]]
+    report_note: str = ""
+    report_details: tuple[str, ...] = ()
+
+    def dp(self, resolution: float) -> float:
+        """Particle spacing [m] of a resolution."""
+        return self.length / resolution
+
+    def run(self, resolution: float, quick: bool = False, progress: bool = False) -> dict[str, Any]:
+        """Run the case at ``resolution``; returns the run record (never raises for a failed
+        simulation: the record's ``status`` says what happened)."""
+        return run_case(self.name, resolution, quick, progress)
+
+
+def run_case(name: str, resolution: float, quick: bool = False, progress: bool = False
+             ) -> dict[str, Any]:
+    """Run case ``name`` at ``resolution``: the run record (a module-level function, so that it
+    pickles for process pools and Dask workers).
+
+    Raises:
+        ValueError: unknown case or a resolution that is not a positive number.
+    """
+    if name not in CASES:
+        raise ValueError(f"case: unknown validation case {name!r}; known: {', '.join(CASES)}")
+    case = CASES[name]
+    _positive("resolution", resolution)
+    clock = _Clock()
+    try:
+        return case.runner(case, float(resolution), quick, progress)
+    except (SceneError, ValueError, RuntimeError, FloatingPointError) as exc:
+        # a case that cannot be built or measured at this resolution is a result, not a crash
+        return make_record(name, resolution, case.dp(resolution), None, clock.wall(), clock.cpu(),
+                           "error", f"{type(exc).__name__}: {exc}", {}, {})
+
+
+# ------------------------------------------------------------------------------------------------
+# still-water tank
+
+
+def _run_tank(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """Still water, 2D, 1.0 m x 0.5 m deep (the ``Tank`` defaults), run for 1 s (0.5 s quick).
+    Pressure interpolated on the vertical line x = l/2 every dp/2 from dp/2 to d - dp/2."""
+    dp = case.dp(res)
+    until = 0.5 if quick else 1.0
+    builder = Tank(dim=2, dp=dp, until=until)
+    assert builder.depth is not None and builder.length is not None
+    clock = _Clock()
+    sim = builder.build()
+    status, message = advance(sim, until, until / 20.0, progress=progress,
+                              label=f"{case.name} {res:g}")
+    depth, g, rho0 = builder.depth, builder.gravity, builder.rho0
+    z = np.arange(0.5 * dp, depth - 0.5 * dp + 1e-9, 0.5 * dp)
+    pts = np.column_stack([np.full_like(z, 0.5 * builder.length), z])
+    p = sim.interpolate(pts)["pressure"]
+    rms, worst = m.hydrostatic_pressure_error(z, p, depth, rho0, g)
+    v = m.spurious_velocity(sim.fluid_velocities(), depth, g)
+    x, top = m.surface_profile(sim.fluid_positions(), dp, 0.0, builder.length)
+    details = {"depth": depth, "length": builder.length, "until": until,
+               "surface_mean_minus_depth": float(np.mean(top) - depth),
+               "pressure_rms_over_rho_g_d": rms, "pressure_max_over_rho_g_d": worst,
+               "max_speed_over_sqrt_gd": v}
+    errors = {"pressure_rms": rms, "pressure_max": worst, "spurious_velocity": v}
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# dam breaks
+
+
+def _front_errors(t: list[float], x: list[float], width: float, g: float, x_max: float
+                  ) -> tuple[dict[str, float | None], dict[str, Any]]:
+    """Raw and best-shift front errors against Martin & Moyce (lethe set)."""
+    errors: dict[str, float | None] = {}
+    details: dict[str, Any] = {"reference": "lethe"}
+    try:
+        raw = front_error(t, x, width, g, x_max=x_max)
+    except ValueError as exc:
+        details["note"] = str(exc)
+        return {"front_rms": None}, details
+    errors["front_rms"] = raw.rms_rel_error
+    errors["front_max"] = raw.max_rel_error
+    details.update(mean_rel_error=raw.mean_rel_error, mean_lead_s=raw.mean_lead_s,
+                   n_points=raw.n_points, t_max_s=raw.t_max_s)
+    try:
+        shifted = m.front_error_best_shift(t, x, width, g, x_max=x_max)
+        errors["front_rms_shifted"] = shifted.rms_rel_error
+        details.update(best_shift_s=shifted.shift_s, n_points_shifted=shifted.n_points)
+    except ValueError as exc:
+        details["note_shifted"] = str(exc)
+    return errors, details
+
+
+def _run_dambreak(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """Martin & Moyce column (width 1 m, height 2 m). 2D: the ``DamBreak`` defaults (tank 4 m),
+    to 0.7 s (0.4 s quick). 3D: a narrow tank (width 0.5 m) 3 m long, to 0.6 s (0.4 s quick).
+    Front sampled every 0.01 s."""
+    dp = case.dp(res)
+    dim = 3 if case.name.endswith("3d") else 2
+    if dim == 2:
+        builder = DamBreak(dim=2, dp=dp, until=0.4 if quick else 0.7)
+    else:
+        builder = DamBreak(dim=3, dp=dp, tank_length=3.0, tank_width=0.5,
+                           until=0.4 if quick else 0.6)
+    until = float(builder.until)  # type: ignore[arg-type]
+    clock = _Clock()
+    sim = builder.build()
+    times: list[float] = []
+    fronts: list[float] = []
+
+    def sample(s: Simulation) -> None:
+        times.append(s.time)
+        fronts.append(front_position(s.fluid_positions(), dp))
+
+    status, message = advance(sim, until, 0.01, sample, progress, f"{case.name} {res:g}")
+    errors, details = _front_errors(times, fronts, builder.width, builder.gravity,
+                                    builder.tank_length)
+    details.update(until=until, tank_length=builder.tank_length,
+                   tank_width=builder.tank_width, front_final=fronts[-1] if fronts else None,
+                   front_t=times, front_x=fronts)
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# standing wave
+
+
+@dataclass(frozen=True, kw_only=True)
+class StandingWaveTank(Tank):
+    """A closed 2D tank whose still water starts with the surface ``d + a cos(pi x / l)``.
+
+    The core fills fluid *boxes*, so the surface is built from one box per lattice column,
+    each as high as the cosine at the column's centre rounded to a whole dp (the particles of a
+    box then reach exactly its top, which is also the level the core's hydrostatic initial
+    density is measured from). The rounding makes a staircase; the amplitude of the first
+    mode actually present is measured from the particles (:func:`metrics.surface_profile`).
+
+    Attributes:
+        amplitude: a [m], the first mode's amplitude (``eta = a cos(pi x / l)``).
+    """
+
+    _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
+        2: {"dp": 0.025, "until": 3.0, "length": 1.0, "depth": 0.5, "height": 0.8},
+    }
+    amplitude: float = 0.05
+
+    def _validate_geometry(self) -> None:
+        if self.dim != 2:
+            raise SceneError("dim: the standing-wave tank is 2D only")
+        super()._validate_geometry()
+        a = _positive("amplitude", self.amplitude)
+        assert self.depth is not None and self.height is not None
+        if a >= self.depth:
+            raise SceneError(f"amplitude: {a:g} m must be smaller than the depth {self.depth:g} m")
+        if self.depth + a > self.height:
+            raise SceneError(f"amplitude: the crest ({self.depth + a:g} m) is above the walls "
+                             f"(height = {self.height:g} m)")
+
+    def _geometry(self) -> dict[str, Any]:
+        assert self.length is not None and self.depth is not None and self.dp is not None
+        geometry = super()._geometry()
+        n = int(math.floor(self.length / self.dp + 1e-9))
+        k = math.pi / self.length
+        boxes = []
+        for i in range(n):
+            xc = (i + 0.5) * self.dp
+            top = self.dp * round((self.depth + self.amplitude * math.cos(k * xc)) / self.dp)
+            # widened by 1e-6 dp on each side: the core refuses a box narrower than dp, which
+            # (i + 1) dp - i dp can be in floating point; no other column's centre is inside
+            eps = 1e-6 * self.dp
+            x0, x1 = max(i * self.dp - eps, 0.0), min((i + 1) * self.dp + eps, self.length)
+            boxes.append({"min": [x0, 0.0], "max": [x1, top]})
+        geometry["fluid"] = boxes
+        return geometry
+
+
+def _run_standing(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """First sloshing mode of a 1.0 m tank, d = 0.5 m (kd = pi/2), a = 0.05 m (H = 0.1 m);
+    2.5 periods (1.5 quick); surface sampled every T/40, mode amplitude fitted by a damped
+    cosine."""
+    dp = case.dp(res)
+    length, depth, a = 1.0, 0.5, 0.5 * case.length
+    period = m.standing_wave_period(length, depth)
+    until = (1.5 if quick else 2.5) * period
+    builder = StandingWaveTank(dp=dp, length=length, depth=depth, amplitude=a, until=until)
+    clock = _Clock()
+    sim = builder.build()
+    times: list[float] = []
+    amps: list[float] = []
+
+    def sample(s: Simulation) -> None:
+        x, top = m.surface_profile(s.fluid_positions(), dp, 0.0, length)
+        times.append(s.time)
+        amps.append(m.standing_wave_mode_amplitude(x, top, length))
+
+    status, message = advance(sim, until, period / 40.0, sample, progress,
+                              f"{case.name} {res:g}")
+    details: dict[str, Any] = {"period_linear": period, "amplitude_design": a,
+                               "amplitude_initial": amps[0] if amps else None, "until": until,
+                               "t": times, "mode_amplitude": amps}
+    errors: dict[str, float | None] = {"period": None, "decay_per_period": None}
+    if len(times) >= 8:
+        fit = m.damped_oscillation_fit(times, amps, 2.0 * math.pi / period)
+        details.update(period_simulated=fit.period, decay_rate=fit.decay,
+                       log_decrement=fit.log_decrement, amplitude_fit=fit.amplitude)
+        errors["period"] = m.relative_error(fit.period, period)
+        errors["decay_per_period"] = abs(1.0 - math.exp(-fit.log_decrement))
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# regular waves in a flat flume
+
+
+def _phases(sim: FlumeSimulation, scene: FlumeScene, names: list[str]) -> dict[str, float]:
+    """First-harmonic phase [rad] of each named gauge over its steady part (the window of
+    :func:`watersim.flume.analyse_flume`: ramp + arrival + one period, to the end)."""
+    t, eta, _ = sim.gauges.uniform()
+    period = scene.law.period
+    assert period is not None
+    out: dict[str, float] = {}
+    for j, name in enumerate(sim.gauges.names):
+        if name not in names:
+            continue
+        t0 = scene.law.ramp_duration + scene.arrival_time(float(sim.gauges.x[j])) + period
+        sel = t >= t0
+        if np.count_nonzero(sel) < 4 or t[-1] - t0 < period:
+            continue
+        h = an.harmonic_analysis(eta[sel, j], t[sel], period, 1)
+        out[name] = float(h.phases[0])
+    return out
+
+
+def _flume_run(case: Case, scene: FlumeScene, res: float, progress: bool, label: str
+               ) -> tuple[FlumeSimulation, str, str | None, dict[str, Any]]:
+    """Build and run a flume scene; returns the simulation, status, message and analysis."""
+    sim = scene.build()
+    until = float(scene.until)  # type: ignore[arg-type]
+    status, message = advance(sim, until, max(until / 50.0, 1e-3), None, progress, label)
+    return sim, status, message, sim.analyse()
+
+
+def _flume2d_items(dp: float, order: int) -> tuple[FlumeScene, list[str]]:
+    """flume2d (d = 0.3 m, T = 1.2 s, H = 0.05 m) at dp, until = ramp + arrival at 3 L +
+    3.5 periods (2.5 periods of steady record at 3 L; the same with ``quick``, which the
+    height at 3 L needs)."""
+    items = {"dp": repr(dp), "paddle.order": str(order)}
+
+    def until(s: FlumeScene) -> float:
+        assert s.period is not None and s.wavelength is not None
+        return s.law.ramp_duration + s.arrival_time(3.0 * s.wavelength) + 3.5 * s.period
+
+    return _with_until("flume2d", items, until)
+
+
+def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    dp = case.dp(res)
+    scene, notes = _flume2d_items(dp, 2)
+    clock = _Clock()
+    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    assert scene.period is not None and scene.wavelength is not None
+    wl, period, height = scene.wavelength, scene.period, case.length
+    depth = scene.flume.depth
+    by_x = {round(g["x"] / wl, 2): g for g in result["gauges"]}
+    errors: dict[str, float | None] = {}
+    details: dict[str, Any] = {"wavelength_linear": wl, "H_target": height, "notes": notes,
+                               "analysis_notes": result.get("notes", [])}
+    heights = {}
+    for n in (1.0, 2.0, 3.0):
+        g = by_x.get(n)
+        if g is not None and g.get("H_mean") is not None:
+            heights[n] = g["H_mean"]
+            details[f"H_{n:g}L"] = g["H_mean"]
+    errors["H_1L"] = m.relative_error(heights[1.0], height) if 1.0 in heights else None
+    errors["H_3L"] = m.relative_error(heights[3.0], height) if 3.0 in heights else None
+    if len(heights) >= 2:
+        loss = m.height_loss_per_wavelength(np.array(list(heights)) * wl,
+                                            np.array(list(heights.values())), wl)
+        details["height_loss_per_wavelength"] = loss
+        errors["height_loss_per_L"] = abs(loss)
+    flat = [g["name"] for g in result["gauges"]]
+    phases = _phases(sim, scene, flat)
+    xs = [g["x"] for g in result["gauges"] if g["name"] in phases]
+    if len(xs) >= 2:
+        lw = m.wavelength_from_phases(xs, [phases[n] for n in phases], 2 * math.pi / wl)
+        l3 = m.stokes3_wavelength(period, depth, height, scene.gravity)
+        details.update(wavelength_measured=lw, wavelength_stokes3=l3)
+        errors["wavelength_linear"] = m.relative_error(lw, wl)
+        errors["wavelength_stokes3"] = m.relative_error(lw, l3)
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+def _run_secondorder(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """flume2d twice, with a first- and a second-order piston: spread of the second-harmonic
+    amplitude over the six flat-floor gauges (1, 1.5, 1.6, 1.75, 2, 3 L) against the Stokes
+    bound amplitude."""
+    dp = case.dp(res)
+    clock = _Clock()
+    errors: dict[str, float | None] = {}
+    details: dict[str, Any] = {}
+    status, message = "ok", None
+    n_particles = steps = 0
+    sim: FlumeSimulation | None = None
+    for order in (2, 1):
+        scene, notes = _flume2d_items(dp, order)
+        assert scene.wavelength is not None
+        sim, st, msg, result = _flume_run(case, scene, res, progress,
+                                          f"{case.name} {res:g} order {order}")
+        n_particles = max(n_particles, sim.n_particles)
+        steps += sim.steps
+        if st != "ok" and status == "ok":
+            status, message = st, f"order {order}: {msg}"
+        k = 2.0 * math.pi / scene.wavelength
+        bound = float(wt.stokes2_second_harmonic_amplitude(case.length, k, scene.flume.depth))
+        a2 = [g["harmonics"][1] for g in result["gauges"] if g.get("harmonics")]
+        details[f"a2_order{order}"] = a2
+        details["a2_bound"] = bound
+        details[f"notes_order{order}"] = notes + result.get("notes", [])
+        if len(a2) >= 2:
+            errors[f"a2_spread_order{order}"] = m.harmonic_spread(a2, bound)
+            errors[f"a2_mean_order{order}"] = m.relative_error(float(np.mean(a2)), bound)
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details, n_sims=2, particles_total=n_particles,
+                       steps_total=steps)
+
+
+# ------------------------------------------------------------------------------------------------
+# Beji & Battjes bar
+
+
+def _measured_bar(period: float) -> dict[float, tuple[list[float], list[float]]]:
+    """(amplitudes, phases) of the first three harmonics of each Beji & Battjes record."""
+    out = {}
+    for x, name in BEJI_BATTJES_FILES.items():
+        t, eta = _load_csv(name)
+        dt = (t[-1] - t[0]) / (t.size - 1)
+        h = an.harmonic_analysis(eta, t[0] + dt * np.arange(t.size), period, 3)
+        out[x] = ([float(v) for v in h.amplitudes], [float(v) for v in h.phases])
+    return out
+
+
+def _run_bar(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """bar2d (d = 0.4 m, H = 0.02 m, T = 2.02 s); until = ramp + arrival at x = 17.3 m +
+    3 periods (quick: at x = 10.5 m), so the gauges up to 17.3 m (10.5 m) are compared."""
+    dp = case.dp(res)
+
+    def until(s: FlumeScene) -> float:
+        assert s.period is not None
+        return s.law.ramp_duration + s.arrival_time(10.5 if quick else 17.3) + 3.0 * s.period
+
+    scene, notes = _with_until("bar2d", {"dp": repr(dp)}, until)
+    clock = _Clock()
+    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    assert scene.period is not None
+    measured = _measured_bar(scene.period)
+    names = [g["name"] for g in result["gauges"]]
+    phases = {}
+    t, eta, _ = sim.gauges.uniform()
+    rows_sim, rows_ref, ph_sim, ph_ref, xs = [], [], [], [], []
+    for g in result["gauges"]:
+        ref = measured.get(round(g["x"], 1))
+        if ref is None or not g.get("harmonics") or any(a is None for a in g["harmonics"]):
+            continue
+        t0 = g["window"][0]
+        sel = t >= t0
+        h = an.harmonic_analysis(eta[sel, names.index(g["name"])], t[sel], scene.period, 3)
+        phases[g["name"]] = [float(v) for v in h.phases]
+        rows_sim.append(g["harmonics"])
+        rows_ref.append(ref[0])
+        ph_sim.append(phases[g["name"]])
+        ph_ref.append(ref[1])
+        xs.append(g["x"])
+    errors: dict[str, float | None] = {}
+    details: dict[str, Any] = {"gauges_x": xs, "amplitudes_simulated": rows_sim,
+                               "amplitudes_measured": rows_ref, "phases_simulated": ph_sim,
+                               "phases_measured": ph_ref, "notes": notes,
+                               "analysis_notes": result.get("notes", [])}
+    if rows_sim:
+        amp = m.harmonic_amplitude_errors(rows_sim, rows_ref, 0.5 * case.length)
+        for n in range(3):
+            errors[f"harmonic{n + 1}_amplitude"] = float(amp[n])
+        if len(xs) >= 2:
+            for n in range(3):
+                errors[f"harmonic{n + 1}_phase"] = m.relative_phase_error(
+                    [p[n] for p in ph_sim], [p[n] for p in ph_ref])
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# solitary wave run-up
+
+
+SOLITARY_SLOPE = 1.0 / 3.0
+"""Beach slope of the run-up case: steep enough that H/d = 0.15 does not break."""
+
+
+def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """solitary2d set up non-breaking: d = 0.3 m, H/d = 0.15 (H = 0.045 m), a 1:3 beach from
+    x = 3 m, flume 4.8 m (walls d + d/2 = 0.45 m high, above the law's run-up of 0.137 m);
+    until = half the paddle motion + travel to the shoreline + 1 s, the same with ``quick``."""
+    dp = case.dp(res)
+    depth, height = 0.3, case.length
+    items = {"dp": repr(dp), "wave.height": repr(height), "beach.slope": repr(SOLITARY_SLOPE),
+             "beach.toe": "3.0", "flume.length": "4.8"}
+
+    def until(s: FlumeScene) -> float:
+        assert s.law.duration is not None and s.shoreline is not None
+        c = float(wt.solitary_celerity(height, depth, s.gravity))
+        # Goring's motion is symmetric about the crest's release at half its duration; the
+        # run-up peaks within about a second of the crest reaching the shoreline
+        return 0.5 * s.law.duration + s.shoreline / c + 1.0
+
+    scene, notes = _with_until("solitary2d", items, until)
+    clock = _Clock()
+    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    law = float(wt.synolakis_runup(height, depth, SOLITARY_SLOPE)) * depth
+    ru = result.get("runup") or {}
+    runup = ru.get("max")
+    t, _, r = sim.gauges.uniform()
+    t_max = float(t[int(np.nanargmax(r))]) if r is not None and np.any(np.isfinite(r)) else None
+    cot = 1.0 / SOLITARY_SLOPE
+    details = {"runup_max": runup, "runup_law": law, "H_over_d": height / depth,
+               "cot_beta": cot, "runup_ceiling": scene.tank_height - depth,
+               "t_runup_max": t_max, "until": scene.until,
+               "non_breaking_limit_H_over_d": 0.818 * cot ** (-10.0 / 9.0), "notes": notes,
+               "analysis_notes": result.get("notes", [])}
+    errors = {"runup": m.relative_error(runup, law) if runup is not None else None}
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# Kimmoun & Branger breaking (seed 001)
+
+
+KIMMOUN_BREAKING_X = 14.575 - 2.48
+"""Incipient breaking [m from the paddle]: seed 001 Fig. 5, 248 cm before the shoreline
+(x = 14.575 m)."""
+KIMMOUN_BREAKER_HEIGHT = 0.14
+"""Wave height at breaking H_B [m], seed 001 section 2."""
+KIMMOUN_RUNUP_SPH = 0.0753
+"""Seed 001's own SPH mean run-up "R/H = 7.53 %" (Fig. 9, Table 3), kept for comparison."""
+
+
+def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """kimmoun2d (seed 001 flume, H = 0.114 m, T = 1.275 s, 1:15 beach), until = ramp + arrival
+    at x = 14.155 m + 4 periods (about 20.8 s; quick 2.2 periods).
+    Breaking position and H_B: where the mean wave height peaks among the gauges on the slope
+    (every 0.5 m from 8 to 14.5 m); run-up: mean per-wave maximum."""
+    dp = case.dp(res)
+
+    def until(s: FlumeScene) -> float:
+        # the analysis reads each gauge from ramp + arrival + one period: this leaves three
+        # steady periods (quick: 1.2) at the last breaking gauge, 42 cm before the shoreline
+        assert s.period is not None and s.shoreline is not None
+        extra = 2.2 if quick else 4.0
+        return s.law.ramp_duration + s.arrival_time(s.shoreline - 0.42) + extra * s.period
+
+    scene, notes = _with_until("kimmoun2d", {"dp": repr(dp)}, until)
+    clock = _Clock()
+    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    br = result.get("breaking") or {}
+    ru = result.get("runup") or {}
+    # the breaker: the largest mean wave height among the gauges on the slope (the analysis's
+    # max_height falls back to flat-floor gauges when none on the slope has a steady record)
+    depth = scene.flume.depth
+    on_slope = [g for g in result["gauges"]
+                if 0.0 < g["still_depth"] < depth - 1e-9 and g.get("H_mean") is not None]
+    top = max(on_slope, key=lambda g: g["H_mean"]) if on_slope else None
+    x_b = top["x"] if top is not None else None
+    h_b = top["H_mean"] if top is not None else None
+    # the seed's comparison values (section 2, Table 3): xi = 0.31, H = 0.11 m, L0 = 2.54 m
+    xi = 0.31
+    formulas = {"hunt": float(wt.hunt_runup(xi)), "schuttrumpf": float(wt.schuttrumpf_runup(xi)),
+                "chue": float(wt.chue_runup(0.11, 2.54, 1.0 / 15.0))}
+    r_over_h = ru.get("mean_over_H")
+    details = {"breaking_x": x_b, "breaking_x_reference": KIMMOUN_BREAKING_X,
+               "breaker_height": h_b, "breaker_height_reference": KIMMOUN_BREAKER_HEIGHT,
+               "breaking_onset_mccowan_x": br.get("position"), "runup_over_H": r_over_h,
+               "runup_over_H_formulas": formulas, "runup_over_H_seed_sph": KIMMOUN_RUNUP_SPH,
+               "notes": notes, "analysis_notes": result.get("notes", [])}
+    errors = {
+        "breaking_x_m": abs(x_b - KIMMOUN_BREAKING_X) if x_b is not None else None,
+        "breaker_height": m.relative_error(h_b, KIMMOUN_BREAKER_HEIGHT) if h_b else None,
+        "runup_vs_schuttrumpf": (m.relative_error(r_over_h, formulas["schuttrumpf"])
+                                 if r_over_h is not None else None),
+    }
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
+# registry
+
+
+_DAMBREAK_NOTE = (
+    "`front_rms` and `front_max` compare the simulated front with the data as they are, "
+    "without any shift (`watersim.measure.front_error`). The experiment's gate opened in a "
+    "finite time, so an instantly released column leads the data; at coarse dp numerical "
+    "dissipation slows the front and cancels part of that lead, so the raw error need not fall "
+    "with dp. `front_rms_shifted` is a different, labelled metric: the RMS error left after "
+    "removing the best constant time shift of the simulation "
+    "(`metrics.front_error_best_shift`; the shift is in runs.json, `details.best_shift_s`); "
+    "it measures the shape of the front curve. The residual column height is not compared: "
+    "shared/validation holds height data only for a square column (n^2 = 1, time scaling "
+    "unconfirmed), not for this n^2 = 2 column."
+)
+
+CASES: dict[str, Case] = {
+    c.name: c
+    for c in (
+        Case("tank2d", "still water, 2D tank 1.0 m x 0.5 m deep, 1 s",
+             "hydrostatics p = rho0 g (d - z); fluid at rest", "depth / dp", 0.5,
+             (10.0, 20.0, 30.0), (10.0,), "pressure_rms", 0.01,
+             "RMS pressure error <= 1 % of rho0 g d", _run_tank,
+             report_details=("surface_mean_minus_depth",)),
+        Case("dambreak2d", "2D dam break, 1 m x 2 m column (n^2 = 2), to 0.7 s",
+             "Martin & Moyce (1952) surge front (lethe set)", "column width / dp", 1.0,
+             (10.0, 20.0, 40.0), (8.0,), "front_rms", 0.10,
+             "RMS relative front error <= 10 %", _run_dambreak, _DAMBREAK_NOTE,
+             report_details=("mean_lead_s", "best_shift_s", "n_points", "front_final")),
+        Case("dambreak3d", "3D dam break, narrow tank (0.5 m wide, 3 m long), to 0.6 s",
+             "Martin & Moyce (1952) surge front (lethe set)", "column width / dp", 1.0,
+             (6.0, 8.0, 12.0), (6.0,), "front_rms", 0.15,
+             "RMS relative front error <= 15 %", _run_dambreak, _DAMBREAK_NOTE,
+             report_details=("mean_lead_s", "best_shift_s", "n_points", "front_final")),
+        Case("standing2d", "first sloshing mode, 1.0 m tank, d = 0.5 m, a = 0.05 m",
+             "linear theory omega^2 = g k tanh(k d)", "wave height 2a / dp", 0.1,
+             (2.0, 3.0, 4.5), (2.0,), "period", 0.02,
+             "period within 2 % of linear theory", _run_standing,
+             "The initial surface is a staircase of whole dp (the core fills fluid boxes; see "
+             "`StandingWaveTank`), so the initial first-mode amplitude differs from a = 0.05 m "
+             "(`details.amplitude_initial`). `decay_per_period` is the fraction of the "
+             "amplitude lost per period; inviscid linear theory has none (the physical viscous "
+             "decay of this tank is far below 1 % per period).",
+             report_details=("period_linear", "period_simulated", "amplitude_initial",
+                             "decay_rate")),
+        Case("flume2d", "flat flume, regular wave H = 0.05 m, T = 1.2 s, d = 0.3 m",
+             "target height; linear and Stokes third-order wavelength", "wave height / dp", 0.05,
+             (1.0, 1.4, 2.0), (1.0,), "H_3L", 0.10,
+             "wave height at 3 wavelengths within 10 % of the target", _run_flume2d,
+             "`H_1L`, `H_3L`: mean zero-crossing height at 1 and 3 wavelengths against the "
+             "target H. `height_loss_per_L`: fraction of the height lost per wavelength, fitted "
+             "over the gauges at 1, 2 and 3 L. `wavelength_*`: wavelength from the "
+             "first-harmonic phases of the six flat-floor gauges against linear and Stokes "
+             "third-order dispersion (Stokes second order has the linear wavelength).",
+             report_details=("H_1L", "H_2L", "H_3L", "wavelength_measured",
+                             "wavelength_linear", "wavelength_stokes3")),
+        Case("secondorder2d", "flume2d with first- and second-order pistons",
+             "Stokes second-order bound harmonic (constant along the flume)", "wave height / dp",
+             0.05, (1.0, 1.2, 1.4), (1.0,), "a2_spread_order2", 0.25,
+             "second-harmonic spread (2nd-order piston) <= 25 % of the bound amplitude",
+             _run_secondorder,
+             "Each run is two simulations (first- and second-order piston; wall time is their "
+             "sum). `a2_spread_orderN`: (max - min) of the second-harmonic amplitude over the "
+             "six flat-floor gauges, over the Stokes bound amplitude; a spurious free second "
+             "harmonic makes it large. `a2_mean_orderN`: the mean amplitude against the bound. "
+             "For this wave (kd = 1.06) Madsen's second-order stroke amplitude is 0.11 mm "
+             "against a 48 mm first-order stroke (`FlumeScene.law.second_order_amplitude` and "
+             "`.stroke` of `flume_builder('flume2d', {'paddle.order': '2'})`): far below any "
+             "affordable dp, so the two pistons cannot differ here; a shallower wave "
+             "(kd near 0.5) at several particles per wave height would show the difference.",
+             report_details=("a2_bound",)),
+        Case("bar2d", "Beji & Battjes (1993) submerged bar, H = 0.02 m, T = 2.02 s",
+             "Beji & Battjes (1993) gauge records (waves2Foam)", "wave height / dp", 0.02,
+             (0.25, 0.33, 0.4), (0.25,), "harmonic1_amplitude", 0.10,
+             "first-harmonic amplitude RMS error <= 10 % of H/2", _run_bar,
+             "Resolutions below one particle per wave height: the 2 cm wave is numerically "
+             "damped at every affordable dp (bar2d's own docstring asks for H/dp >= 5, a run "
+             "of hours on this machine). Amplitude errors are RMS over the gauges up to 17.3 m, "
+             "over H/2 = 0.01 m; phase errors [rad] are between gauges (the experiment's clock "
+             "offset removed)."),
+        Case("solitary2d", "non-breaking solitary wave, H/d = 0.15, 1:3 beach",
+             "Synolakis (1987) R/d = 2.831 sqrt(cot beta) (H/d)^(5/4)", "wave height / dp",
+             0.045, (1.0, 1.5, 2.0), (1.0,), "runup", 0.10,
+             "maximum run-up within 10 % of the Synolakis law", _run_solitary,
+             "Set up non-breaking for the law: H/d = 0.15 on a 1:3 beach, below the "
+             "non-breaking limit H/d < 0.818 (cot beta)^(-10/9) = 0.24 (Synolakis 1987 as "
+             "usually quoted). The built-in solitary2d default (H/d = 0.3 on 1:19.85) breaks, "
+             "and the law does not apply to it. The run-up is read by the flume's automatic "
+             "run-up gauge, a line 1.5 dp above the beach (`RunupGauge`): water thinner than "
+             "that (3.4-6.8 cm at these dp, against a law run-up of 13.7 cm) is not seen.",
+             report_details=("runup_max", "runup_law", "t_runup_max", "until")),
+        Case("kimmoun2d", "seed 001: regular waves plunging on a 1:15 beach, about 16 periods",
+             "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
+             "wave height / dp", 0.114, (1.2, 1.7, 2.3), (1.2,), "breaker_height", 0.10,
+             "breaker height within 10 % of H_B = 0.14 m", _run_kimmoun,
+             "`breaking_x_m`: distance [m] between the gauge (0.5 m spacing) with the largest "
+             "mean wave height on the slope and the seed's incipient breaking, 248 cm before "
+             "the shoreline (x = 12.095 m). `breaker_height`: that height against H_B = 0.14 m. "
+             "`runup_vs_schuttrumpf`: mean run-up R/H against Schuttrumpf's R/H = 2.25 "
+             "tanh(xi/2) with the seed's xi = 0.31 (the seed finds its SPH closest to that "
+             "formula; the other formulas and the seed's own SPH value are in runs.json).",
+             report_details=("breaking_x", "breaker_height", "breaking_onset_mccowan_x",
+                             "runup_over_H")),
+    )
+}
+"""The validation cases by name, in report order."""
+

@@ -1,0 +1,343 @@
+"""What a sweep's run records say: convergence orders, Pareto fronts, the cheapest run that
+meets a case's accuracy target, and the Markdown + PNG report of ``watersim validate``.
+
+The analysis functions are pure (lists of run records in, numbers out) and unit-tested on
+synthetic records; :func:`write_report` draws with matplotlib's Agg backend.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "ConvergenceOrder",
+    "cheapest_meeting",
+    "convergence_order",
+    "ok_runs",
+    "pareto_front",
+    "self_convergence",
+    "write_report",
+]
+
+Record = Mapping[str, Any]
+
+FLAT_ORDER = 0.2
+"""An observed order below this in magnitude is reported as a level error, neither falling nor
+rising with dp."""
+
+
+def _error(record: Record, metric: str) -> float | None:
+    value = (record.get("errors") or {}).get(metric)
+    if value is None:
+        return None
+    v = float(value)
+    return v if math.isfinite(v) else None
+
+
+def ok_runs(records: Sequence[Record], metric: str) -> list[Record]:
+    """Runs that finished (status ``ok``) and have a finite value of ``metric``."""
+    return [r for r in records if r.get("status") == "ok" and _error(r, metric) is not None]
+
+
+@dataclass(frozen=True)
+class ConvergenceOrder:
+    """Observed order p of ``error ~ C dp^p``.
+
+    Attributes:
+        order: least-squares slope of log(error) against log(dp); positive when the error falls
+            as dp falls, NaN with fewer than two distinct dp.
+        n_runs: runs used (finished runs with a positive error).
+        falls: whether the error of the finest run is below that of the coarsest.
+    """
+
+    order: float
+    n_runs: int
+    falls: bool | None
+
+
+def convergence_order(dp: Sequence[float], error: Sequence[float]) -> ConvergenceOrder:
+    """Least-squares slope of ``log(error)`` against ``log(dp)``.
+
+    Errors that are zero or not finite are left out (log undefined).
+    """
+    pairs = [(float(d), float(e)) for d, e in zip(dp, error, strict=True)
+             if d is not None and e is not None and d > 0 and math.isfinite(e) and e > 0]
+    if len({d for d, _ in pairs}) < 2:
+        return ConvergenceOrder(math.nan, len(pairs), None)
+    x = np.log([d for d, _ in pairs])
+    y = np.log([e for _, e in pairs])
+    slope = float(np.polyfit(x, y, 1)[0])
+    finest = min(pairs)[1]
+    coarsest = max(pairs)[1]
+    return ConvergenceOrder(slope, len(pairs), finest < coarsest)
+
+
+def pareto_front(records: Sequence[Record], metric: str) -> list[Record]:
+    """The runs no other run beats on both wall time and ``metric`` (finished runs only),
+    sorted by wall time: each is cheaper or more accurate than every other."""
+    runs = sorted(ok_runs(records, metric),
+                  key=lambda r: (float(r["wall_s"]), _error(r, metric)))
+    front: list[Record] = []
+    best = math.inf
+    for r in runs:
+        e = _error(r, metric)
+        assert e is not None
+        if e < best:
+            front.append(r)
+            best = e
+    return front
+
+
+def cheapest_meeting(records: Sequence[Record], metric: str, target: float) -> Record | None:
+    """The finished run with the smallest wall time whose ``metric`` is at most ``target``."""
+    good = [r for r in ok_runs(records, metric) if (_error(r, metric) or 0.0) <= target]
+    return min(good, key=lambda r: float(r["wall_s"])) if good else None
+
+
+def self_convergence(runs: Sequence[Record], t_key: str = "front_t", x_key: str = "front_x"
+                     ) -> list[tuple[Record, float]]:
+    """RMS relative difference of each run's time series to the finest run's.
+
+    For records whose ``details`` hold a series (``t_key``, ``x_key``, e.g. the dam-break
+    front), each coarser finished run is interpolated at the finest run's sample times (within
+    its own time range) and ``sqrt(mean(((x - x_finest) / x_finest)^2))`` is taken. This needs
+    no reference data: it falls with dp when the solution converges, whatever the data say.
+
+    Returns:
+        (record, difference) for every finished run but the finest, coarsest first.
+    """
+    series = [r for r in runs if r.get("status") == "ok"
+              and len((r.get("details") or {}).get(t_key) or []) >= 2]
+    if len(series) < 2:
+        return []
+    series.sort(key=lambda r: -float(r["dp"]))
+    finest = series[-1]
+    tf = np.asarray(finest["details"][t_key], dtype=float)
+    xf = np.asarray(finest["details"][x_key], dtype=float)
+    out = []
+    for r in series[:-1]:
+        t = np.asarray(r["details"][t_key], dtype=float)
+        x = np.asarray(r["details"][x_key], dtype=float)
+        sel = (tf >= t[0]) & (tf <= t[-1]) & np.isfinite(xf) & (xf != 0.0)
+        if np.count_nonzero(sel) < 2:
+            continue
+        diff = (np.interp(tf[sel], t, x) - xf[sel]) / xf[sel]
+        out.append((r, float(np.sqrt(np.mean(diff**2)))))
+    return out
+
+
+# ------------------------------------------------------------------------------------------------
+# report
+
+
+def _metrics_of(records: Sequence[Record]) -> list[str]:
+    names: list[str] = []
+    for r in records:
+        for k in (r.get("errors") or {}):
+            if k not in names:
+                names.append(k)
+    return names
+
+
+def _fmt(v: Any, digits: int = 3) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            return "-"
+        return f"{v:.{digits}g}"
+    return str(v)
+
+
+def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: str | None,
+               path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for i, metric in enumerate(metrics):
+        good = sorted(ok_runs(runs, metric), key=lambda r: float(r["dp"]))
+        good = [r for r in good if (_error(r, metric) or 0.0) > 0.0]
+        if not good:
+            continue
+        colour = f"C{i % 10}"
+        wall = [float(r["wall_s"]) for r in good]
+        err = [_error(r, metric) for r in good]
+        dps = [float(r["dp"]) for r in good]
+        ax1.loglog(wall, err, "o-", color=colour, label=metric)
+        order = convergence_order(dps, err)  # type: ignore[arg-type]
+        label = metric if math.isnan(order.order) else f"{metric}: order {order.order:.2f}"
+        ax2.loglog(dps, err, "o-", color=colour, label=label)
+    if primary is not None:
+        front = pareto_front(runs, primary)
+        if front:
+            ax1.step([float(r["wall_s"]) for r in front], [_error(r, primary) for r in front],
+                     where="post", color="k", lw=2.5, alpha=0.35, marker="o", ms=12,
+                     mfc="none", label=f"Pareto front ({primary})")
+    selfconv = self_convergence(runs)
+    if selfconv:
+        dps = [float(r["dp"]) for r, _ in selfconv]
+        diffs = [d for _, d in selfconv]
+        label = "front vs finest run (self-convergence)"
+        if len(selfconv) >= 2:
+            label += f": order {convergence_order(dps, diffs).order:.2f}"
+        ax2.loglog(dps, diffs, "s--", color="0.3", label=label)
+    ax1.set_xlabel("wall time [s]")
+    ax1.set_ylabel("error [-] (metre for *_m)")
+    ax1.set_title(f"{name}: error against wall time")
+    ax2.set_xlabel("dp [m]")
+    ax2.set_title(f"{name}: error against dp (slope = order)")
+    ax2.invert_xaxis()
+    for ax in (ax1, ax2):
+        ax.grid(True, which="both", alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def write_report(
+    records: Sequence[Record],
+    out_dir: str | Path,
+    cases: Mapping[str, Any] | None = None,
+    header: Sequence[str] = (),
+) -> Path:
+    """Write ``out_dir/README.md`` and one ``<case>.png`` per case.
+
+    Args:
+        records: run records (:func:`watersim.validation.cases.make_record`).
+        out_dir: folder (created).
+        cases: the :class:`~watersim.validation.cases.Case` objects by name, for the
+            descriptions, the resolution meaning and the accuracy targets (default
+            :data:`~watersim.validation.cases.CASES`).
+        header: Markdown lines put under the title (command, date, machine, load).
+
+    Returns:
+        The README path.
+    """
+    if cases is None:
+        from .cases import CASES
+
+        cases = CASES
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    names: list[str] = []
+    for r in records:
+        if r["case"] not in names:
+            names.append(r["case"])
+    names.sort(key=lambda n: list(cases).index(n) if n in cases else len(cases))
+    lines = ["# Validation report: error against run time", ""]
+    lines += list(header)
+    lines += [
+        "",
+        "Each case runs at several resolutions (particles per characteristic length, so",
+        "dp = length / resolution). Errors are fractions (0.05 = 5 %) unless the name ends in",
+        "`_m` (metres) or `_phase` (radians). The convergence order is the least-squares slope of",
+        "log(error) against log(dp) over the finished runs: positive means the error falls as dp",
+        "falls. The Pareto front holds the runs that no other run beats on both wall time and",
+        "the case's primary error. Wall times are on a shared machine (see above); `cpu_s` is",
+        "the process CPU time of the run.",
+        "",
+        "## Summary",
+        "",
+    ]
+    summary: list[str] = []
+    body: list[str] = []
+    for name in names:
+        runs = [r for r in records if r["case"] == name]
+        runs.sort(key=lambda r: float(r["resolution"]))
+        case = cases.get(name)
+        primary = getattr(case, "primary", None)
+        metrics = _metrics_of(runs)
+        if primary is not None and primary in metrics:
+            metrics.remove(primary)
+            metrics.insert(0, primary)
+        png = f"{name}.png"
+        _plot_case(name, runs, metrics, primary, out / png)
+        body += [f"## {name}", ""]
+        if case is not None:
+            body += [f"{case.description}. Reference: {case.reference}. "
+                     f"Resolution = {case.resolution_meaning}.", ""]
+        body += ["| resolution | dp [m] | particles | steps | sim time [s] | wall [s] | cpu [s] "
+                 "| status | " + " | ".join(metrics) + " |",
+                 "|" + "---|" * (8 + len(metrics))]
+        for r in runs:
+            errs = [_fmt(_error(r, k)) for k in metrics]
+            status = r["status"] if r["status"] == "ok" else f"**{r['status']}**"
+            body.append(f"| {_fmt(r['resolution'])} | {_fmt(r['dp'], 4)} | {r['n_particles']} | "
+                        f"{r['steps']} | {_fmt(r['sim_time'])} | {_fmt(r['wall_s'])} | "
+                        f"{_fmt(r.get('cpu_s'))} | {status} | " + " | ".join(errs) + " |")
+        shown = [k for k in getattr(case, "report_details", ()) if any(
+            k in (r.get("details") or {}) for r in runs)]
+        if shown:
+            body += ["", "Measured values (`details` in runs.json):", "",
+                     "| resolution | " + " | ".join(shown) + " |", "|" + "---|" * (1 + len(shown))]
+            for r in runs:
+                d = r.get("details") or {}
+                body.append(f"| {_fmt(r['resolution'])} | "
+                            + " | ".join(_fmt(d.get(k), 4) for k in shown) + " |")
+        failed = [r for r in runs if r["status"] != "ok"]
+        for r in failed:
+            body.append(f"\n- resolution {_fmt(r['resolution'])}: {r['status']}: "
+                        f"{r.get('message')}")
+        body += ["", "Observed convergence order (error ~ dp^p):", ""]
+        for k in metrics:
+            good = ok_runs(runs, k)
+            order = convergence_order([float(r["dp"]) for r in good],
+                                      [_error(r, k) for r in good])  # type: ignore[misc]
+            if math.isnan(order.order):
+                body.append(f"- `{k}`: not enough finished runs")
+                continue
+            if abs(order.order) < FLAT_ORDER:
+                trend = f"stays about level (|p| < {FLAT_ORDER})"
+            else:
+                trend = ("falls" if order.falls else "does NOT fall") + \
+                    " from the coarsest to the finest run"
+            body.append(f"- `{k}`: p = {order.order:.2f} over {order.n_runs} runs; the error "
+                        f"{trend}")
+        selfconv = self_convergence(runs)
+        if selfconv:
+            finest = min((r for r in runs if r.get("status") == "ok"),
+                         key=lambda r: float(r["dp"]))
+            parts = ", ".join(f"resolution {_fmt(r['resolution'])}: {_fmt(d)}"
+                              for r, d in selfconv)
+            text = (f"Self-convergence (a labelled extra, no reference data): RMS relative "
+                    f"difference of the front to the finest run's (resolution "
+                    f"{_fmt(finest['resolution'])}): {parts}")
+            if len(selfconv) >= 2:
+                order = convergence_order([float(r["dp"]) for r, _ in selfconv],
+                                          [d for _, d in selfconv])
+                text += f"; observed order {order.order:.2f}"
+            body += ["", text + "."]
+        answer = "-"
+        if case is not None and primary is not None:
+            best = cheapest_meeting(runs, primary, case.target)
+            if best is None:
+                answer = (f"none of the runs meets it ({case.target_text}, metric "
+                          f"`{primary}`)")
+            else:
+                answer = (f"the cheapest run that meets {case.target_text} is resolution "
+                          f"{_fmt(best['resolution'])} (dp = {_fmt(best['dp'], 4)} m, "
+                          f"{_fmt(best['wall_s'])} s wall)")
+            front = pareto_front(runs, primary)
+            body += ["", f"Pareto front (`{primary}` against wall time): " + (", ".join(
+                f"resolution {_fmt(r['resolution'])} ({_fmt(r['wall_s'])} s, "
+                f"{_fmt(_error(r, primary))})" for r in front) or "empty") + "."]
+        note = getattr(case, "report_note", "") if case is not None else ""
+        if note:
+            body += ["", note]
+        body += ["", f"**Answer:** {answer}.", "", f"![{name}]({png})", ""]
+        summary.append(f"- **{name}**: {answer}.")
+    lines += summary + [""] + body
+    readme = out / "README.md"
+    readme.write_text("\n".join(lines) + "\n", "utf-8")
+    return readme

@@ -1,0 +1,291 @@
+"""Validation package: metrics on synthetic inputs with known errors, convergence/Pareto/cheapest
+on synthetic records, the ``watersim validate`` CLI on a tiny case, and the Dask executor."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from watersim import wave_theory as wt
+from watersim.cli import main
+from watersim.measure import front_error, load_martin_moyce
+from watersim.validation import CASES, StandingWaveTank, metrics, run_case
+from watersim.validation.report import (
+    cheapest_meeting,
+    convergence_order,
+    pareto_front,
+    self_convergence,
+    write_report,
+)
+from watersim.validation.sweep import ValidateError, parse_resolutions, plan, run_sweep
+
+G = 9.81
+
+
+# ------------------------------------------------------------------------------------------------
+# metrics
+
+
+def test_hydrostatic_error_of_a_constant_offset() -> None:
+    z = np.linspace(0.0, 0.5, 21)
+    exact = 1000.0 * G * (0.5 - z)
+    assert metrics.hydrostatic_pressure_error(z, exact, 0.5, 1000.0, G) == (0.0, 0.0)
+    rms, worst = metrics.hydrostatic_pressure_error(z, exact + 0.01 * 1000.0 * G * 0.5, 0.5,
+                                                    1000.0, G)
+    assert rms == pytest.approx(0.01) and worst == pytest.approx(0.01)
+    # a 10 % error in the slope: |err| = 0.1 (d - z)/d, max at the floor
+    rms, worst = metrics.hydrostatic_pressure_error(z, 1.1 * exact, 0.5, 1000.0, G)
+    assert worst == pytest.approx(0.1)
+    assert rms == pytest.approx(0.1 * np.sqrt(np.mean(((0.5 - z) / 0.5) ** 2)))
+
+
+def test_spurious_velocity() -> None:
+    v = np.zeros((10, 2))
+    v[3] = [0.0, -0.1 * math.sqrt(G * 0.5)]
+    assert metrics.spurious_velocity(v, 0.5, G) == pytest.approx(0.1)
+
+
+def test_front_error_of_a_scaled_martin_moyce_curve() -> None:
+    ref = load_martin_moyce("lethe")
+    t_ref, x_ref = ref.dimensional(1.0, G)
+    t = np.union1d(np.linspace(0.0, t_ref[-1], 400), t_ref)  # samples at the measured times
+    exact = np.interp(t, t_ref, x_ref)
+    assert front_error(t, exact, 1.0, G).rms_rel_error == pytest.approx(0.0, abs=1e-12)
+    # a front 10 % ahead everywhere: the error is 10 % at every point
+    err = front_error(t, 1.1 * exact, 1.0, G)
+    assert err.rms_rel_error == pytest.approx(0.1) and err.mean_rel_error == pytest.approx(0.1)
+
+
+def test_best_shift_recovers_a_time_lead() -> None:
+    ref = load_martin_moyce("lethe")
+    t_ref, x_ref = ref.dimensional(1.0, G)
+    lead = 0.05
+    t = np.linspace(0.0, t_ref[-1], 700)
+    x = np.interp(t + lead, t_ref, x_ref)  # the simulated front leads the data by 0.05 s
+    raw = front_error(t, x, 1.0, G)
+    assert raw.rms_rel_error > 0.05  # the lead shows as a large raw error ...
+    shifted = metrics.front_error_best_shift(t, x, 1.0, G)
+    assert shifted.shift_s == pytest.approx(lead, abs=1e-3)  # ... which the shift removes
+    assert shifted.rms_rel_error < 5e-3
+
+
+def test_standing_wave_period_deep_water_limit() -> None:
+    length = 1.0
+    deep = metrics.standing_wave_period(length, 20.0, G)
+    assert deep == pytest.approx(2.0 * math.pi / math.sqrt(G * math.pi / length), rel=1e-12)
+    shallow = metrics.standing_wave_period(length, 0.01, G)  # c = sqrt(g d), T = 2 l / c
+    assert shallow == pytest.approx(2.0 * length / math.sqrt(G * 0.01), rel=1e-3)
+
+
+def test_surface_profile_and_mode_amplitude_of_a_cosine_lattice() -> None:
+    dp, length, depth, a = 0.01, 1.0, 0.3, 0.04
+    xs = (np.arange(100) + 0.5) * dp
+    pts = []
+    for x in xs:
+        top = depth + a * math.cos(math.pi * x / length)
+        zs = np.arange(0.5 * dp, top - 0.5 * dp + 1e-12, dp)
+        zs = zs - zs[-1] + top - 0.5 * dp  # the top particle sits dp/2 below the surface
+        pts += [(x, z) for z in zs]
+    x, top = metrics.surface_profile(np.array(pts), dp, 0.0, length)
+    assert np.allclose(top, depth + a * np.cos(math.pi * x / length))
+    assert metrics.standing_wave_mode_amplitude(x, top, length) == pytest.approx(a, rel=1e-9)
+    assert metrics.standing_wave_mode_amplitude(x, top, length, mode=2) == pytest.approx(
+        0.0, abs=1e-12)
+
+
+def test_damped_oscillation_fit_recovers_known_parameters() -> None:
+    t = np.linspace(0.0, 3.0, 120)
+    y = 0.04 * np.exp(-0.3 * t) * np.cos(5.0 * t + 0.2) + 0.01
+    fit = metrics.damped_oscillation_fit(t, y, 4.5)
+    assert fit.omega == pytest.approx(5.0, rel=1e-6)
+    assert fit.decay == pytest.approx(0.3, rel=1e-5)
+    assert fit.amplitude == pytest.approx(0.04, rel=1e-6)
+    assert fit.phase == pytest.approx(0.2, abs=1e-6)
+    assert fit.log_decrement == pytest.approx(0.3 * 2 * math.pi / 5.0, rel=1e-5)
+
+
+def test_stokes3_wavelength() -> None:
+    T, d = 1.2, 0.3
+    linear = float(wt.wavelength(T, d))
+    assert metrics.stokes3_wavelength(T, d, 1e-6) == pytest.approx(linear, rel=1e-9)
+    longer = metrics.stokes3_wavelength(T, d, 0.05)
+    assert longer > linear
+    # deep water: omega^2 = g k (1 + (k a)^2)
+    k = 2 * math.pi / metrics.stokes3_wavelength(0.8, 50.0, 0.05)
+    assert (2 * math.pi / 0.8) ** 2 == pytest.approx(G * k * (1 + (k * 0.025) ** 2), rel=1e-9)
+
+
+def test_wavelength_from_wrapped_phases() -> None:
+    k = 2 * math.pi / 1.77
+    x = np.array([1.77, 2.655, 2.832, 3.0975, 3.54, 5.31])
+    phase = np.angle(np.exp(1j * (0.7 - k * x)))  # wrapped into (-pi, pi]
+    assert metrics.wavelength_from_phases(x, phase, 0.8 * k) == pytest.approx(1.77, rel=1e-9)
+
+
+def test_height_loss_per_wavelength() -> None:
+    wl = 1.5
+    x = np.array([1.0, 2.0, 3.0]) * wl
+    h = 0.05 * 0.9 ** (x / wl)  # 10 % lost per wavelength
+    assert metrics.height_loss_per_wavelength(x, h, wl) == pytest.approx(0.1)
+    assert metrics.height_loss_per_wavelength(x, np.full(3, 0.05), wl) == pytest.approx(0.0)
+
+
+def test_harmonic_spread_and_amplitude_errors() -> None:
+    assert metrics.harmonic_spread([0.002, 0.003, 0.0025], 0.004) == pytest.approx(0.25)
+    sim = np.array([[0.011, 0.002, 0.0], [0.009, 0.002, 0.0]])
+    ref = np.array([[0.010, 0.001, 0.0], [0.010, 0.003, 0.0]])
+    err = metrics.harmonic_amplitude_errors(sim, ref, 0.01)
+    assert np.allclose(err, [0.1, 0.1, 0.0])
+
+
+def test_relative_phase_error_ignores_a_clock_offset() -> None:
+    meas = np.array([0.3, -2.0, 3.0, 1.0])
+    assert metrics.relative_phase_error(meas + 1.234, meas) == pytest.approx(0.0, abs=1e-12)
+    off = np.array([0.1, -0.1, 0.1, -0.1])
+    assert metrics.relative_phase_error(meas + 2.0 + off, meas) == pytest.approx(0.1)
+
+
+def test_a_wrong_synolakis_coefficient_gives_a_large_error() -> None:
+    runup = float(wt.synolakis_runup(0.045, 0.3, 1 / 3)) * 0.3  # a "simulation" that obeys it
+    law = float(wt.synolakis_runup(0.045, 0.3, 1 / 3)) * 0.3
+    assert metrics.relative_error(runup, law) == pytest.approx(0.0)
+    wrong = 2.0 * math.sqrt(3.0) * 0.15**1.25 * 0.3  # coefficient 2.0 instead of 2.831
+    assert metrics.relative_error(runup, wrong) == pytest.approx(2.831 / 2.0 - 1.0)
+    assert metrics.relative_error(runup, wrong) > CASES["solitary2d"].target
+
+
+# ------------------------------------------------------------------------------------------------
+# report functions on synthetic records
+
+
+def _rec(res: float, dp: float, wall: float, err: float | None, status: str = "ok") -> dict:
+    return {"case": "tank2d", "resolution": res, "dp": dp, "n_particles": 100, "steps": 10,
+            "sim_time": 1.0, "wall_s": wall, "cpu_s": wall, "threads": 1,
+            "errors": {"pressure_rms": err, "spurious_velocity": 0.001}, "status": status,
+            "message": None}
+
+
+def test_convergence_order_of_synthetic_errors() -> None:
+    dp = np.array([0.1, 0.05, 0.025, 0.0125])
+    assert convergence_order(dp, 3.0 * dp**2).order == pytest.approx(2.0)
+    order = convergence_order(dp, 0.2 * dp**-0.5)
+    assert order.order == pytest.approx(-0.5) and order.falls is False
+    assert math.isnan(convergence_order([0.1], [0.2]).order)
+
+
+def test_pareto_front_and_cheapest_run() -> None:
+    runs = [_rec(10, 0.05, 1.0, 0.05), _rec(20, 0.025, 8.0, 0.02), _rec(30, 0.0167, 30.0, 0.03),
+            _rec(40, 0.0125, 60.0, 0.008), _rec(50, 0.01, 2.0, None, status="non_finite")]
+    front = pareto_front(runs, "pressure_rms")
+    assert [r["resolution"] for r in front] == [10, 20, 40]
+    assert cheapest_meeting(runs, "pressure_rms", 0.025)["resolution"] == 20
+    assert cheapest_meeting(runs, "pressure_rms", 0.001) is None
+
+
+def test_self_convergence_of_synthetic_fronts() -> None:
+    t = np.linspace(0.0, 0.7, 71)
+    exact = 1.0 + 4.0 * t**2
+
+    def run(dp: float) -> dict:
+        r = _rec(1.0 / dp, dp, 1.0, 0.1)
+        r["details"] = {"front_t": list(t), "front_x": list(exact * (1.0 + 3.0 * dp**2))}
+        return r
+
+    out = self_convergence([run(0.1), run(0.05), run(0.0125)])
+    assert [r["dp"] for r, _ in out] == [0.1, 0.05]
+    ref = exact * (1.0 + 3.0 * 0.0125**2)
+    for r, diff in out:
+        rel = exact * (1.0 + 3.0 * r["dp"] ** 2) / ref - 1.0
+        assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
+
+
+def test_report_writes_readme_and_plots(tmp_path) -> None:
+    runs = [_rec(10, 0.05, 1.0, 0.05), _rec(20, 0.025, 8.0, 0.012), _rec(40, 0.0125, 60.0, 0.004)]
+    readme = write_report(runs, tmp_path, header=["- test header"])
+    text = readme.read_text()
+    assert "the cheapest run that meets" in text and "resolution 40" in text
+    slope = np.polyfit(np.log([0.05, 0.025, 0.0125]), np.log([0.05, 0.012, 0.004]), 1)[0]
+    assert f"`pressure_rms`: p = {slope:.2f} over 3 runs; the error falls" in text
+    assert (tmp_path / "tank2d.png").stat().st_size > 1000
+
+
+# ------------------------------------------------------------------------------------------------
+# cases, sweep and CLI
+
+
+def test_standing_wave_tank_surface_is_a_cosine_staircase() -> None:
+    b = StandingWaveTank(dp=0.025, amplitude=0.05, until=1.0)
+    sim = b.build()
+    x, top = metrics.surface_profile(sim.fluid_positions(), 0.025, 0.0, 1.0)
+    assert x.size == 40
+    design = 0.5 + 0.05 * np.cos(math.pi * x)
+    assert np.max(np.abs(top - design)) <= 0.5 * 0.025 + 1e-9
+    amp = metrics.standing_wave_mode_amplitude(x, top, 1.0)
+    assert amp == pytest.approx(0.05, abs=0.25 * 0.025)
+
+
+def test_bad_input_is_refused_before_running() -> None:
+    with pytest.raises(ValidateError, match="unknown validation case 'nope'"):
+        plan(["nope"], None, False)
+    with pytest.raises(ValidateError, match="--resolutions: each resolution must be positive"):
+        parse_resolutions("10,-2")
+    with pytest.raises(ValidateError, match="--resolutions: expected numbers"):
+        parse_resolutions("10,x")
+    assert plan(["tank2d"], None, True) == [("tank2d", 10.0)]
+    with pytest.raises(ValueError, match="resolution: must be positive"):
+        run_case("tank2d", 0.0)
+    assert main(["validate", "nope"]) == 2
+    assert main(["validate", "--from-json", "x.json", "--quick", "--report", "r"]) == 2
+    assert main(["validate", "tank2d", "--jobs", "2", "--scheduler", "tcp://x:1"]) == 2
+    assert main(["validate", "tank2d", "--jobs", "0"]) == 2
+    assert main(["validate", "tank2d", "--note", "n"]) == 2  # a note needs --report
+
+
+def test_run_case_reports_a_scene_it_cannot_build() -> None:
+    record = run_case("tank2d", 1.0, quick=True)  # dp = depth: fewer than 2 particles deep
+    assert record["status"] == "error" and "dp" in record["message"]
+
+
+FIELDS = {"case", "resolution", "dp", "n_particles", "steps", "sim_time", "wall_s", "threads",
+          "errors", "status"}
+
+
+def test_cli_validate_tiny_case(tmp_path, capsys) -> None:
+    out_json = tmp_path / "runs.json"
+    report = tmp_path / "report"
+    code = main(["validate", "tank2d", "--quick", "--resolutions", "4,6", "--json",
+                 str(out_json), "--report", str(report)])
+    assert code == 0
+    runs = json.loads(out_json.read_text())
+    assert [r["resolution"] for r in runs] == [4.0, 6.0]
+    for r in runs:
+        assert FIELDS <= set(r)
+        assert r["status"] == "ok" and r["steps"] > 0 and r["sim_time"] >= 0.5
+        assert r["dp"] == pytest.approx(0.5 / r["resolution"])
+        assert set(r["errors"]) == {"pressure_rms", "pressure_max", "spurious_velocity"}
+    text = (report / "README.md").read_text()
+    assert "watersim validate tank2d --quick" in text and "![tank2d](tank2d.png)" in text
+    assert (report / "tank2d.png").exists()
+    # the report again from the JSON, without running
+    again = tmp_path / "again"
+    assert main(["validate", "--from-json", str(out_json), "--report", str(again)]) == 0
+    assert (again / "README.md").exists()
+
+
+def test_process_pool_executor() -> None:
+    runs = run_sweep([("tank2d", 4.0), ("tank2d", 5.0)], quick=True, jobs=2)
+    assert [r["resolution"] for r in runs] == [4.0, 5.0]
+    assert all(r["status"] == "ok" for r in runs)
+
+
+def test_dask_local_cluster_executor(tmp_path) -> None:
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        runs = run_sweep([("tank2d", 4.0)], quick=True, scheduler=cluster.scheduler_address,
+                         json_path=tmp_path / "runs.json")
+    assert runs[0]["status"] == "ok" and runs[0]["steps"] > 0
+    assert json.loads((tmp_path / "runs.json").read_text())[0]["case"] == "tank2d"
