@@ -35,6 +35,7 @@ def _check_fields(err: ws.InstabilityError, kind: str, sim: ws.Simulation) -> No
     assert isinstance(err.particle, int) and 0 <= err.particle < sim.n_particles
     assert len(err.position) == sim.dim
     message = str(err)
+    assert err.message and err.message in message  # the monitor's own sentence
     assert message.startswith(f"{kind} at step {err.step} ")
     assert f"particle {err.particle}" in message
     # the core keeps the monitor's own sentence after the colon

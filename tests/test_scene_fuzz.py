@@ -52,13 +52,9 @@ def scenes(draw: st.DrawFn) -> dict:
     }
     for key, (lo, hi) in ranges.items():
         if draw(st.booleans()):
-            bad = anything
-            if key == "coefh":
-                # a tiny positive coefh panics in the core's CellGrid::new (capacity overflow) or
-                # aborts the process on allocation: a core gap, pinned by
-                # test_tiny_coefh_is_refused_not_a_panic (xfail) and refused by the builders
-                bad = anything.filter(lambda v: not 0.0 < v < 0.5)
-            scene[key] = _mostly(draw, st.floats(lo, hi), bad)
+            # (a tiny positive coefh used to panic in the core's CellGrid::new; the core now
+            # counts the grid's cells in its memory check: test_tiny_coefh_is_refused_not_a_panic)
+            scene[key] = _mostly(draw, st.floats(lo, hi), anything)
     if draw(st.booleans()):
         scene["kernel"] = _mostly(draw, st.sampled_from(["wendland", "cubic_spline"]), st.sampled_from(["gauss", ""]))
     if draw(st.booleans()):
@@ -234,9 +230,6 @@ def test_any_flume_builds_and_steps_or_raises_with_a_message(a: dict) -> None:
     assert sim.steps == 2 and math.isfinite(sim.time)
 
 
-@pytest.mark.xfail(strict=True, raises=BaseException,
-                   reason="core gap: CellGrid::new panics with 'capacity overflow' for a tiny "
-                          "coefh (cells of size h, count not bounded by the memory estimate)")
 def test_tiny_coefh_is_refused_not_a_panic() -> None:
     scene = {"dim": 3, "dp": 0.07, "coefh": 1e-6, "memory_limit_bytes": 4_000_000,
              "tank": {"min": [0.0, 0.0, 0.0], "max": [2.0, 0.3, 1.9]},

@@ -37,6 +37,14 @@ pub trait Kernel: Copy + Send + Sync + 'static {
     fn w(&self, r: Real) -> Real;
     /// `(dW/dr) / r` for `0 < r`; finite at `r -> 0`. Zero for `r >= 2h`.
     fn grad_factor(&self, r: Real) -> Real;
+    /// Whether [`Kernel::grad_factor_inv_r`] uses `1/r` (the pair loop then folds it into the
+    /// pair's single division).
+    const NEEDS_INV_R: bool = false;
+    /// [`Kernel::grad_factor`] given `1/r` as well.
+    #[inline(always)]
+    fn grad_factor_inv_r(&self, r: Real, _inv_r: Real) -> Real {
+        self.grad_factor(r)
+    }
 }
 
 /// Cubic spline M4 (Monaghan & Lattanzio 1985): `alpha_D = 10/(7 pi h^2)` in 2D, `1/(pi h^3)` in 3D.
@@ -71,16 +79,22 @@ impl Kernel for CubicSpline {
     }
     #[inline(always)]
     fn grad_factor(&self, r: Real) -> Real {
+        self.grad_factor_inv_r(r, 1.0 / r)
+    }
+    const NEEDS_INV_R: bool = true;
+    #[inline(always)]
+    fn grad_factor_inv_r(&self, r: Real, inv_r: Real) -> Real {
         let q = r * self.inv_h;
         let c = self.alpha_d * self.inv_h * self.inv_h;
+        // d/dq (1 - 3/2 q^2 + 3/4 q^3) / q = -3 + 9/4 q inside q < 1, -3/4 (2 - q)^2 / q outside;
+        // both are computed and one selected: the branch would be mispredicted in the pair loop.
+        let inner = c * (-3.0 + 2.25 * q);
+        let t = (2.0 - q).max(0.0);
+        let outer = c * (-0.75 * t * t * self.h * inv_r); // 1/q = h/r
         if q < 1.0 {
-            // d/dq (1 - 3/2 q^2 + 3/4 q^3) / q = -3 + 9/4 q
-            c * (-3.0 + 2.25 * q)
-        } else if q < 2.0 {
-            let t = 2.0 - q;
-            c * (-0.75 * t * t / q)
+            inner
         } else {
-            0.0
+            outer
         }
     }
 }

@@ -72,8 +72,10 @@ impl<D: Dim> CellGrid<D> {
 
     #[inline(always)]
     fn coord(&self, p: D::V, k: usize) -> usize {
-        let c = ((p.get(k) - self.origin.get(k)) * self.inv_cell).floor();
-        // NaN maps to 0 through `as`; monitors report NaN separately.
+        let c = (p.get(k) - self.origin.get(k)) * self.inv_cell;
+        // Truncation is the floor for c >= 0 (negative c clamps to 0 anyway) and, unlike
+        // `floor()`, needs no libm call on x86-64 targets without SSE4.1 (it cost 2 % of a
+        // step). NaN maps to 0 through `as`; the monitors report NaN separately.
         (c.max(0.0) as usize).min(self.dims[k] - 1)
     }
 

@@ -60,14 +60,19 @@ impl<D: Dim> Particles<D> {
     }
 }
 
-/// Applies `perm` (new slot -> old absolute index) to `data[range]` through `scratch`.
-pub fn permute<T: Copy + Send + Sync>(data: &mut [T], range: std::ops::Range<usize>, perm: &[u32], scratch: &mut Vec<T>) {
+/// Applies `perm` (new slot -> old absolute index) to `data[range]`, gathering through
+/// `scratch`: one buffer of the widest element type serves every array (reinterpreted as `T`),
+/// so sorting costs one vector's worth of memory per particle rather than one per type.
+pub fn permute<T: bytemuck::Pod + Send + Sync, S: bytemuck::Pod>(
+    data: &mut [T],
+    range: std::ops::Range<usize>,
+    perm: &[u32],
+    scratch: &mut [S],
+) {
     use rayon::prelude::*;
     let n = range.len();
-    scratch.clear();
-    scratch.reserve(n);
-    // `extend` from an exact-size parallel iterator writes in order without reallocating.
+    let buf = &mut bytemuck::cast_slice_mut::<S, T>(scratch)[..n];
     let src = &*data;
-    scratch.par_extend(perm[..n].par_iter().map(|&old| src[old as usize]));
-    data[range].copy_from_slice(scratch);
+    buf.par_iter_mut().zip(perm[..n].par_iter()).for_each(|(dst, &old)| *dst = src[old as usize]);
+    data[range].copy_from_slice(buf);
 }

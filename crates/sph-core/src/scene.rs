@@ -444,22 +444,50 @@ impl Scene {
         (fluid + (outer - inner)) / cell
     }
 
+    /// Cells of the neighbour grid: the tank with its walls and as much again above it, in
+    /// cells of side `h` (half the support, see `simulation.rs`).
+    pub fn estimated_cells(&self) -> f64 {
+        let dim = self.dim;
+        let t = self.layers() as f64 * self.dp;
+        let cell = self.h();
+        (0..dim)
+            .map(|k| {
+                let extent = self.tank.max[k] - self.tank.min[k];
+                let extent = if k == dim - 1 { 2.0 * extent + 2.0 * t } else { extent + 2.0 * t };
+                (extent / cell).floor().max(1.0)
+            })
+            .product()
+    }
+
     /// Refuses a resolution whose arrays would not fit in memory (an estimate: about
     /// `48 dim + 100` bytes per particle, see docs/physics-options.md).
     fn validate_memory(&self) -> Result<()> {
-        let Some(limit) = self.memory_limit_bytes.or_else(available_memory_bytes) else { return Ok(()) };
+        let limit = self.memory_limit_bytes.or_else(available_memory_bytes).map_or(f64::INFINITY, |b| b as f64);
         let particles = self.estimated_particles();
-        let bytes = particles * (48.0 * self.dim as f64 + 100.0);
-        if !(bytes <= limit as f64) {
+        // cell starts of three groups plus the sort cursor, 16 bytes per cell of the grid
+        let cells = self.estimated_cells();
+        let particle_bytes = particles * (48.0 * self.dim as f64 + 100.0);
+        let bytes = particle_bytes + 16.0 * cells;
+        if !(bytes <= limit) {
+            // a grid larger than the particles means h is tiny for the tank: blame coefh
+            let (field, fix) = if 16.0 * cells > particle_bytes { ("coefh", "increase coefh") } else { ("dp", "use a larger dp") };
             return Err(Error::invalid(
-                "dp",
+                field,
                 format!(
-                    "dp = {} needs about {:.3e} particles and {:.2} GiB, more than the {:.2} GiB allowed; use a larger dp",
+                    "dp = {} and h = {:e} m need about {:.3e} particles and {:.3e} grid cells, {:.2} GiB, more than the {:.2} GiB allowed; {fix}",
                     self.dp,
+                    self.h(),
                     particles,
+                    cells,
                     bytes / 1024f64.powi(3),
-                    limit as f64 / 1024f64.powi(3)
+                    limit / 1024f64.powi(3)
                 ),
+            ));
+        }
+        if !(cells < u32::MAX as f64) {
+            return Err(Error::invalid(
+                "coefh",
+                format!("h = {:e} m makes a neighbour grid of {cells:.3e} cells (the limit is {:e}); increase coefh or dp", self.h(), u32::MAX as f64),
             ));
         }
         Ok(())

@@ -134,8 +134,9 @@ pub trait Simulation: Send + Sync {
 /// Integrator history.
 #[derive(Debug, Clone)]
 enum History<D: Dim> {
-    /// State at the start of the step (positions, velocities, densities).
-    Symplectic { pos0: Vec<D::V>, vel0: Vec<D::V>, rho0: Vec<Real> },
+    /// Velocities and densities at the start of the step (the corrector advances positions
+    /// from the predictor's half step, so no copy of them is needed).
+    Symplectic { vel0: Vec<D::V>, rho0: Vec<Real> },
     /// Velocities and densities one step back, and the step counter for the Euler restart.
     Verlet { vel_prev: Vec<D::V>, rho_prev: Vec<Real>, euler_every: u32 },
 }
@@ -143,10 +144,8 @@ enum History<D: Dim> {
 #[derive(Debug, Clone, Default)]
 struct Scratch<D: Dim> {
     perm: Vec<u32>,
-    vectors: Vec<D::V>,
-    reals: Vec<Real>,
-    ids: Vec<u32>,
-    kinds: Vec<u8>,
+    /// Gather buffer of `permute`, shared by all arrays (see there).
+    gather: Vec<D::V>,
 }
 
 pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
@@ -234,7 +233,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
 
         let history = match scene.integrator {
             Integrator::Symplectic => History::Symplectic {
-                pos0: vec![D::V::ZERO; n],
                 vel0: vec![D::V::ZERO; n],
                 rho0: vec![0.0; n],
             },
@@ -245,13 +243,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
         // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
         let dt_floor = 1e-6 * c.h / c.c0;
-        let scratch = Scratch {
-            perm: vec![0; n],
-            vectors: Vec::with_capacity(n),
-            reals: Vec::with_capacity(n),
-            ids: Vec::with_capacity(n),
-            kinds: Vec::with_capacity(n),
-        };
+        let scratch = Scratch { perm: vec![0; n], gather: vec![D::V::ZERO; n] };
         let mut solver = Self {
             scene,
             c,
@@ -580,20 +572,19 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let perm = &mut s.perm[..range.len()];
         self.grid.sort_group(g, range.clone(), &self.p.pos, perm);
         let perm = &s.perm[..range.len()];
-        permute(&mut self.p.pos, range.clone(), perm, &mut s.vectors);
-        permute(&mut self.p.vel, range.clone(), perm, &mut s.vectors);
-        permute(&mut self.p.rho, range.clone(), perm, &mut s.reals);
-        permute(&mut self.p.id, range.clone(), perm, &mut s.ids);
-        permute(&mut self.p.kind, range.clone(), perm, &mut s.kinds);
+        permute(&mut self.p.pos, range.clone(), perm, &mut s.gather);
+        permute(&mut self.p.vel, range.clone(), perm, &mut s.gather);
+        permute(&mut self.p.rho, range.clone(), perm, &mut s.gather);
+        permute(&mut self.p.id, range.clone(), perm, &mut s.gather);
+        permute(&mut self.p.kind, range.clone(), perm, &mut s.gather);
         match &mut self.history {
-            History::Symplectic { pos0, vel0, rho0 } => {
-                permute(pos0, range.clone(), perm, &mut s.vectors);
-                permute(vel0, range.clone(), perm, &mut s.vectors);
-                permute(rho0, range.clone(), perm, &mut s.reals);
+            History::Symplectic { vel0, rho0 } => {
+                permute(vel0, range.clone(), perm, &mut s.gather);
+                permute(rho0, range.clone(), perm, &mut s.gather);
             }
             History::Verlet { vel_prev, rho_prev, .. } => {
-                permute(vel_prev, range.clone(), perm, &mut s.vectors);
-                permute(rho_prev, range.clone(), perm, &mut s.reals);
+                permute(vel_prev, range.clone(), perm, &mut s.gather);
+                permute(rho_prev, range.clone(), perm, &mut s.gather);
             }
         }
     }
@@ -724,8 +715,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 let lim = self.compute_forces();
                 let dt = self.time_step(lim)?;
                 let half = 0.5 * dt;
-                let History::Symplectic { pos0, vel0, rho0: rho_n } = &mut self.history else { unreachable!() };
-                pos0.copy_from_slice(&self.p.pos);
+                let History::Symplectic { vel0, rho0: rho_n } = &mut self.history else { unreachable!() };
                 vel0.copy_from_slice(&self.p.vel);
                 rho_n.copy_from_slice(&self.p.rho);
                 let p = &mut self.p;
@@ -745,7 +735,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 // Corrector, with the paddle at mid-step.
                 self.move_boundaries(self.time + half);
                 let _ = self.compute_forces();
-                let History::Symplectic { pos0, vel0, rho0: rho_n } = &self.history else { unreachable!() };
+                let History::Symplectic { vel0, rho0: rho_n } = &self.history else { unreachable!() };
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_n.par_iter()).enumerate().for_each(
                     |(i, ((r, &d), &rn))| {
@@ -762,10 +752,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                     .par_iter_mut()
                     .zip(vel_f.par_iter_mut())
                     .zip(p.acc.par_iter())
-                    .zip(pos0[fs..].par_iter().zip(vel0[fs..].par_iter()))
-                    .for_each(|(((x, v), &a), (&x0, &v0))| {
+                    .zip(vel0[fs..].par_iter())
+                    .for_each(|(((x, v), &a), &v0)| {
+                        // x1 = x0 + (v0 + v1) dt/2 = x_half + v1 dt/2: no copy of x0 is kept
                         let v1 = v0 + a * dt;
-                        *x = x0 + (v1 + v0) * (0.5 * dt);
+                        *x += v1 * half;
                         *v = v1;
                     });
                 self.dt = dt;
@@ -880,11 +871,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         let v = size_of::<D::V>();
         let r = size_of::<Real>();
         let history = match &self.history {
-            History::Symplectic { pos0, vel0, rho0 } => (pos0.capacity() + vel0.capacity()) * v + rho0.capacity() * r,
+            History::Symplectic { vel0, rho0 } => vel0.capacity() * v + rho0.capacity() * r,
             History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
         };
         let s = &self.scratch;
-        let scratch = s.perm.capacity() * 4 + s.vectors.capacity() * v + s.reals.capacity() * r + s.ids.capacity() * 4 + s.kinds.capacity();
+        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * v;
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()

@@ -22,7 +22,7 @@ create_exception!(
 fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
     match e {
         Error::InvalidScene { .. } => SceneError::new_err(e.to_string()),
-        Error::Instability { kind, step, time, particle, ref position, .. } => {
+        Error::Instability { kind, step, time, particle, ref position, ref message } => {
             let err = InstabilityError::new_err(e.to_string());
             let value = err.value(py);
             let set = || -> PyResult<()> {
@@ -31,6 +31,7 @@ fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
                 value.setattr("time", time)?;
                 value.setattr("particle", particle)?;
                 value.setattr("position", position.clone())?;
+                value.setattr("message", message.clone())?;
                 Ok(())
             };
             match set() {

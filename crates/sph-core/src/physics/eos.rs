@@ -19,7 +19,7 @@ pub fn pressure(c: &Constants, rho: Real) -> Real {
 /// Local sound speed `c = c0 (rho/rho0)^((gamma - 1)/2)` [m/s].
 #[inline(always)]
 pub fn sound_speed(c: &Constants, rho: Real) -> Real {
-    let x = rho / c.rho0;
+    let x = rho * c.inv_rho0;
     if c.gamma == 7.0 {
         c.c0 * x * x * x
     } else {

@@ -13,12 +13,16 @@ use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
 use crate::particles::KIND_EXCLUDED;
 
-/// Calls `f(b, r_ab, r_ab^2, F(|r_ab|))` for every particle `b != a` of `group` inside the kernel
+/// Calls `f(b, r_ab, r_ab^2, |r_ab|)` for every particle `b != a` of `group` inside the kernel
 /// support of the point `pa`, in the grid's fixed order.
+///
+/// Measured and dropped (docs/benchmarks.md): a branch-free two-pass variant that compacts the
+/// candidates inside the support before the pair work (particle lattices make the in/out branch
+/// predictable), and trimming the stencil rows to the support sphere (its per-row arithmetic
+/// cost more than the candidates it saved, 2D and 3D).
 #[inline(always)]
-fn for_each_pair<D: Dim, K: Kernel>(
+fn for_each_pair<D: Dim>(
     grid: &CellGrid<D>,
-    kernel: &K,
     support2: Real,
     group: usize,
     pos: &[D::V],
@@ -29,7 +33,7 @@ fn for_each_pair<D: Dim, K: Kernel>(
         let r = pa - pos[b];
         let r2 = r.length_squared();
         if r2 < support2 && r2 > 0.0 {
-            f(b, r, r2, kernel.grad_factor(r2.sqrt()));
+            f(b, r, r2, r2.sqrt());
         }
     });
 }
@@ -91,7 +95,6 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     let mut g = D::V::ZERO;
     g.set(D::DIM - 1, -c.gravity);
     let support2 = c.support * c.support;
-    let inv_gamma = 1.0 / c.gamma;
     acc.par_iter_mut()
         .zip(drho.par_iter_mut())
         .enumerate()
@@ -112,25 +115,41 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
             let mut max_visc = 0.0f64;
             for group in 0..GROUPS {
                 let is_fluid = group == GROUP_FLUID;
-                for_each_pair(grid, kernel, support2, group, f.pos, pa, |b, r, r2, fk| {
+                for_each_pair(grid, support2, group, f.pos, pa, |b, r, r2, dist| {
+                    let rhob = f.rho[b];
+                    // One division gives the pair's four reciprocals: 1/(r^2 + eta^2),
+                    // 1/(rho_a + rho_b), 1/rho_b and (for kernels that need it) 1/r. Divisions
+                    // and square roots share one slow unit and bounded this loop.
+                    let r2e = r2 + c.eta2;
+                    let sum_rho = rhoa + rhob;
+                    let rr = if K::NEEDS_INV_R { dist } else { 1.0 };
+                    let inv_all = 1.0 / (rr * r2e * rhob * sum_rho);
+                    let inv_r2_eta2 = rr * rhob * sum_rho * inv_all;
+                    let inv_sum_rho = rr * r2e * rhob * inv_all;
+                    let fk = if K::NEEDS_INV_R {
+                        kernel.grad_factor_inv_r(dist, r2e * rhob * sum_rho * inv_all)
+                    } else {
+                        kernel.grad_factor(dist)
+                    };
                     let gw = r * fk;
                     let vab = va - f.vel[b];
-                    let rhob = f.rho[b];
                     sum_drho += vab.dot(gw);
 
                     let vr = vab.dot(r);
-                    let inv_r2_eta2 = 1.0 / (r2 + c.eta2);
                     let visc_rate = c.h * vr * inv_r2_eta2;
                     max_visc = max_visc.max(visc_rate.abs());
                     let mut p_term = pa_rho2 + f.p_rho2[b];
-                    if VISC == VISC_ARTIFICIAL && vr < 0.0 {
-                        let cbar = 0.5 * (ca + sound_speed(c, rhob));
-                        let rhobar = 0.5 * (rhoa + rhob);
-                        p_term += -c.alpha * cbar * visc_rate / rhobar;
+                    if VISC == VISC_ARTIFICIAL {
+                        // Pi_ab acts on approaching pairs only (v_ab.r_ab < 0); min() instead of
+                        // a branch: the sign is unpredictable, and for v_ab.r_ab >= 0 the term
+                        // is -0.0, which leaves p_term unchanged.
+                        // cbar / rhobar = (c_a + c_b) / (rho_a + rho_b)
+                        let cbar_rhobar = (ca + sound_speed(c, rhob)) * inv_sum_rho;
+                        p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
                     }
                     sum_acc -= gw * p_term;
                     if VISC != VISC_ARTIFICIAL {
-                        let lam = 4.0 * c.nu * r.dot(gw) * inv_r2_eta2 / (rhoa + rhob);
+                        let lam = 4.0 * c.nu * r.dot(gw) * inv_r2_eta2 * inv_sum_rho;
                         sum_acc += vab * lam;
                     }
                     if VISC == VISC_LAMINAR_SPS && is_fluid {
@@ -140,11 +159,12 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     if DIFF != DIFF_NONE && is_fluid {
                         let mut drho_ba = rhob - rhoa;
                         if DIFF == DIFF_FOURTAKAS {
-                            drho_ba -= hydrostatic_density_difference(c, inv_gamma, r.vertical());
+                            drho_ba -= hydrostatic_density_difference(c, r.vertical());
                         }
                         debug_assert!(DIFF == DIFF_MOLTENI || DIFF == DIFF_FOURTAKAS);
                         // r_ba . grad_a W_ab = -r_ab . grad_a W_ab = -r2 F > 0
-                        sum_diff += 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 / rhob;
+                        let inv_rhob = rr * r2e * sum_rho * inv_all;
+                        sum_diff += 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
                     }
                 });
             }
@@ -163,12 +183,9 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// `coefsound >= 10`, so the binomial series to fourth order is exact to ~1e-10 relative (far
 /// below the density noise it filters) and avoids a `powf` per pair.
 #[inline(always)]
-fn hydrostatic_density_difference(c: &Constants, inv_gamma: Real, z_ab: Real) -> Real {
+fn hydrostatic_density_difference(c: &Constants, z_ab: Real) -> Real {
     let x = c.fourtakas_gz * z_ab;
-    let a1 = inv_gamma;
-    let a2 = a1 * (inv_gamma - 1.0) * 0.5;
-    let a3 = a2 * (inv_gamma - 2.0) * (1.0 / 3.0);
-    let a4 = a3 * (inv_gamma - 3.0) * 0.25;
+    let [a1, a2, a3, a4] = c.fourtakas_series;
     c.rho0 * x * (a1 + x * (a2 + x * (a3 + x * a4)))
 }
 
@@ -185,7 +202,8 @@ pub fn boundary_density_rate<D: Dim, K: Kernel>(
     drho.par_iter_mut().enumerate().for_each(|(a, drho_a)| {
         let (pa, va) = (f.pos[a], f.vel[a]);
         let mut sum = 0.0;
-        for_each_pair(grid, kernel, support2, GROUP_FLUID, f.pos, pa, |b, r, _, fk| {
+        for_each_pair(grid, support2, GROUP_FLUID, f.pos, pa, |b, r, _, dist| {
+            let fk = kernel.grad_factor(dist);
             sum += c.mass * (va - f.vel[b]).dot(r * fk);
         });
         *drho_a = sum;
@@ -208,8 +226,8 @@ pub fn sps_stress<D: Dim, K: Kernel>(
         let a = f.fluid_start + i;
         let (pa, va) = (f.pos[a], f.vel[a]);
         let mut strain = D::Sym::default();
-        for_each_pair(grid, kernel, support2, GROUP_FLUID, f.pos, pa, |b, r, _, fk| {
-            let gw = r * fk;
+        for_each_pair(grid, support2, GROUP_FLUID, f.pos, pa, |b, r, _, dist| {
+            let gw = r * kernel.grad_factor(dist);
             // grad v_a = sum_b V_b (v_b - v_a) (x) grad_a W_ab
             D::sym_add_outer(&mut strain, va - f.vel[b], gw, -c.mass / f.rho[b]);
         });
@@ -236,7 +254,7 @@ mod tests {
         let c = Constants::new(&s);
         for z in [-2.0 * c.h, -0.3 * c.h, 0.0, 0.7 * c.h, 2.0 * c.h] {
             let exact = c.rho0 * ((1.0 + c.fourtakas_gz * z).powf(1.0 / c.gamma) - 1.0);
-            let series = hydrostatic_density_difference(&c, 1.0 / c.gamma, z);
+            let series = hydrostatic_density_difference(&c, z);
             assert!((exact - series).abs() <= 1e-9 * exact.abs() + 1e-15, "z {z}: {exact} vs {series}");
         }
     }
