@@ -776,6 +776,8 @@ class FlumeScene(SceneBuilder):
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
+        energy_growth_limit: not used: the core's energy monitor skips scenes with a paddle
+            (``density_band`` and ``lost_fraction_limit`` do apply); must stay unset.
 
     Numerical defaults differ from the dam break's in two fields, both for wave propagation:
 
@@ -793,10 +795,12 @@ class FlumeScene(SceneBuilder):
         2: {"coefh": 1.5},
         3: {"coefh": 1.2},
     }
+    _ENERGY_MONITOR: ClassVar[bool] = False  # every flume has a paddle
 
     dim: int | None = None  # type: ignore[assignment]
     coefh: float | None = None  # type: ignore[assignment]
     alpha: float = 0.01
+    energy_growth_limit: float | None = None  # type: ignore[assignment]
     flume: Flume
     wave: Wave
     paddle: Paddle = dataclasses.field(default_factory=Piston)

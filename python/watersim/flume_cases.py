@@ -166,7 +166,7 @@ class _Settings:
         hints = typing.get_type_hints(FlumeScene)
         out = dict(defaults)
         for name in (*SceneBuilder.field_names(), "sample_interval"):
-            if name == "dim":
+            if name in ("dim", "energy_growth_limit"):  # fixed by the flume, unused with a paddle
                 continue
             self.keys.append(name)
             if name in self.items:

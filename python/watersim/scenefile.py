@@ -736,9 +736,11 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     yield ('`type = "dambreak"` (top level)', "", DamBreak, ())
     yield ('`type = "tank"` (top level)', "", Tank, ())
     yield ('`type = "flume"` (top level)',
-           "The numerical fields are those of the dam break above, with the defaults below.",
+           "The numerical fields are those of the dam break above, with the defaults below, "
+           "except `energy_growth_limit`: the core's energy monitor does not run in a scene "
+           "with a paddle, so a flume refuses it.",
            FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "dp",
-                                                          "until")))
+                                                          "until")) + ("energy_growth_limit",))
     yield ("`[flume]`", "", Flume, ())
     for cls in (PlaneBeach, ProfileBeach):
         yield (f'`[flume.beach]` with `type = "{TAGS[cls]}"`', "", cls, ())
