@@ -46,6 +46,7 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from ._core import SceneError
+from ._settings import NONE_WORDS, split_setting
 from .flume import (
     RAMPS,
     SPECTRA,
@@ -515,15 +516,15 @@ def apply_settings(data: dict[str, Any], settings: Sequence[str], source: str = 
     takes its default. The result is checked like the file itself.
     """
     for item in settings:
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
+        pair = split_setting(item)
+        if pair is None:
             raise SceneFileError(f"{source}: --set: expected key=value, got {item!r}")
+        key, text = pair
         tokens = _tokens(key, source)
         hint = _hint_at(data, tokens)
         members = _union_args(hint) or ()
         remove = (
-            text.strip().lower() in ("none", "null", "auto")
+            text.strip().lower() in NONE_WORDS
             and type(None) in members
             and str not in members
         )
