@@ -144,6 +144,15 @@ def _finite_tuple(name: str, values: Any, min_len: int = 1) -> tuple[float, ...]
     return tuple(float(v) for v in arr)
 
 
+def _strictly_increasing(name: str, values: Sequence[float]) -> None:
+    """SceneError ``name: must increase strictly (v[i] >= v[i + 1])``, ``v`` the last part of
+    ``name``, at the first pair that does not increase."""
+    symbol = name.rsplit(".", 1)[-1]
+    for i in range(len(values) - 1):
+        if not values[i + 1] > values[i]:
+            raise SceneError(f"{name}: must increase strictly ({symbol}[{i}] >= {symbol}[{i + 1}])")
+
+
 def _optional_name(name: str, value: Any) -> None:
     if value is not None and (not isinstance(value, str) or not value.strip()):
         raise SceneError(f"{name}: must be a non-empty string, got {value!r}")
@@ -208,9 +217,7 @@ class ProfileBeach:
         z = _finite_tuple("beach.z", self.z, 2)
         if len(x) != len(z):
             raise SceneError(f"beach.z: needs as many values as beach.x ({len(x)}), got {len(z)}")
-        for i in range(len(x) - 1):
-            if not x[i + 1] > x[i]:
-                raise SceneError(f"beach.x: must increase strictly (x[{i}] >= x[{i + 1}])")
+        _strictly_increasing("beach.x", x)
         if min(z) < 0.0:
             raise SceneError(f"beach.z: bed heights must not be negative, got {min(z):g}")
         if x[0] < 0.0:
@@ -483,9 +490,7 @@ class TabulatedMotion:
         x = _finite_tuple("wave.x", self.x, 2)
         if len(t) != len(x):
             raise SceneError(f"wave.x: has {len(x)} values but wave.t has {len(t)}")
-        for i in range(len(t) - 1):
-            if not t[i + 1] > t[i]:
-                raise SceneError(f"wave.t: must increase strictly (t[{i}] >= t[{i + 1}])")
+        _strictly_increasing("wave.t", t)
         _set(self, "t", t)
         _set(self, "x", x)
 
