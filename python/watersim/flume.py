@@ -757,6 +757,28 @@ class _Law:
     duration: float | None = None
 
 
+def _harmonic_law(
+    components: list[list[float]], bound: float, paddle: Paddle, period: float, **extra: Any
+) -> _Law:
+    """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over ``components``
+    ``[a, omega, phase]`` with the paddle's start-up ramp over ``ramp_periods`` ``period`` [s];
+    ``bound`` [m] is the largest excursion either way, ``extra`` the other :class:`_Law` fields."""
+    ramp = paddle.ramp_periods * period
+    return _Law(
+        law={
+            "type": "harmonic",
+            "components": components,
+            "ramp_duration": ramp,
+            "ramp_shape": paddle.ramp,
+        },
+        backward=bound,
+        forward=bound,
+        ramp_duration=ramp,
+        period=period,
+        **extra,
+    )
+
+
 @dataclass(frozen=True, kw_only=True)
 class FlumeScene(SceneBuilder):
     """Everything about one flume run: the flume, the wave, the paddle, the gauges and every
@@ -1159,21 +1181,9 @@ class FlumeScene(SceneBuilder):
                 components.append(
                     [law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase]
                 )
-            ramp = paddle.ramp_periods * wave.period
-            bound = sum(abs(c[0]) for c in components)
-            return _Law(
-                law={
-                    "type": "harmonic",
-                    "components": components,
-                    "ramp_duration": ramp,
-                    "ramp_shape": paddle.ramp,
-                },
-                backward=bound,
-                forward=bound,
-                ramp_duration=ramp,
-                period=wave.period,
-                design_height=wave.height,
-                stroke=stroke,
+            return _harmonic_law(
+                components, sum(abs(c[0]) for c in components), paddle, wave.period,
+                design_height=wave.height, stroke=stroke,
                 second_order_amplitude=law.second_order_amplitude,
             )
         if isinstance(wave, IrregularWave):
@@ -1203,24 +1213,11 @@ class FlumeScene(SceneBuilder):
                 [float(a), float(w), float(p)]
                 for a, w, p in zip(amplitudes, omegas, motion.phases, strict=True)
             ]
-            ramp = paddle.ramp_periods * wave.tp
             # The core sizes the room behind the paddle with the sum of the amplitudes (a bound
             # of any harmonic law), far above the signal's actual extremes for hundreds of
             # components; the tank must satisfy that bound.
             bound = float(np.sum(np.abs(amplitudes)))
-            return _Law(
-                law={
-                    "type": "harmonic",
-                    "components": components,
-                    "ramp_duration": ramp,
-                    "ramp_shape": paddle.ramp,
-                },
-                backward=bound,
-                forward=bound,
-                ramp_duration=ramp,
-                period=wave.tp,
-                design_height=1.8 * wave.hs,
-            )
+            return _harmonic_law(components, bound, paddle, wave.tp, design_height=1.8 * wave.hs)
         if isinstance(wave, SolitaryWave):
             try:
                 duration = float(wt.solitary_piston_duration(wave.height, depth,
