@@ -30,6 +30,9 @@ SCENE_KEYS = {
     "obstacles",
     "fluid",
     "boundary_layers",
+    "density_band",
+    "lost_fraction_limit",
+    "energy_growth_limit",
 }
 
 

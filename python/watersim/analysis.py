@@ -134,6 +134,24 @@ def _whole_period_segment(t: FloatArray, period: float, n_periods: int | None) -
     return slice(t.size - n, t.size), int(n_periods)
 
 
+def _whole_waves(
+    t: FloatArray, period: float, origin: float, n_waves: int | None, values_name: str
+) -> tuple[int, int, int]:
+    """The whole periods ``[origin + j T, origin + (j + 1) T]`` inside the record ``t`` [s]:
+    ``(first j, last j, n_waves)``, ``n_waves`` defaulting to all of them and checked against
+    that count (``values_name`` names the record in the error)."""
+    first = math.ceil((t[0] - origin) / period - 1e-9)
+    last = math.floor((t[-1] - origin) / period + 1e-9) - 1
+    available = last - first + 1
+    if available < 1:
+        raise ValueError(f"{values_name}: the record holds no whole period of {period} s")
+    if n_waves is None:
+        n_waves = available
+    if not isinstance(n_waves, (int, np.integer)) or not 1 <= n_waves <= available:
+        raise ValueError(f"n_waves: must be an integer in 1..{available}, got {n_waves!r}")
+    return first, last, int(n_waves)
+
+
 def _window(kind: str, n: int) -> FloatArray:
     """Window weights: ones, or the periodic Hann window ``0.5 - 0.5 cos(2 pi j / n)``."""
     _choice("window", kind, ("rectangular", "hann"))
@@ -562,15 +580,7 @@ def phase_average(
     tt = _times(t, v.shape[0], "values")
     T = _scalar_positive("period", period)
     origin = float(_finite("phase_origin", phase_origin))
-    first = math.ceil((tt[0] - origin) / T - 1e-9)
-    last = math.floor((tt[-1] - origin) / T + 1e-9) - 1
-    available = last - first + 1
-    if available < 1:
-        raise ValueError(f"values: the record holds no whole period of {T} s")
-    if n_waves is None:
-        n_waves = available
-    if not isinstance(n_waves, (int, np.integer)) or not 1 <= n_waves <= available:
-        raise ValueError(f"n_waves: must be an integer in 1..{available}, got {n_waves!r}")
+    _, last, n_waves = _whole_waves(tt, T, origin, n_waves, "values")
     if n_phases is None:
         n_phases = max(2, round(T * (tt.size - 1) / (tt[-1] - tt[0])))
     if not isinstance(n_phases, (int, np.integer)) or n_phases < 1:
@@ -853,15 +863,7 @@ def runup_per_wave(
     T = _scalar_positive("period", period)
     swl = float(_finite("still_water_level", still_water_level))
     origin = float(_finite("phase_origin", phase_origin))
-    first = math.ceil((tt[0] - origin) / T - 1e-9)
-    last = math.floor((tt[-1] - origin) / T + 1e-9) - 1
-    available = last - first + 1
-    if available < 1:
-        raise ValueError(f"runup: the record holds no whole period of {T} s")
-    if n_waves is None:
-        n_waves = available
-    if not isinstance(n_waves, (int, np.integer)) or not 1 <= n_waves <= available:
-        raise ValueError(f"n_waves: must be an integer in 1..{available}, got {n_waves!r}")
+    _, last, n_waves = _whole_waves(tt, T, origin, n_waves, "runup")
     starts = origin + np.arange(last - n_waves + 1, last + 1) * T
     edges = np.searchsorted(tt, np.append(starts, starts[-1] + T), side="left")
     if np.any(np.diff(edges) == 0):

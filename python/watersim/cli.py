@@ -38,7 +38,6 @@ import math
 import os
 import sys
 import time
-import types
 import typing
 import warnings
 from collections.abc import Callable, Sequence
@@ -47,6 +46,9 @@ from typing import Any, TextIO
 
 from . import __version__
 from ._core import InstabilityError, SceneError
+from ._jsonio import json_ready as _jsonable
+from ._jsonio import write_json_atomic
+from ._settings import parse_setting, split_setting
 from .bench_cases import DSPH_CASES, dsph_scene
 from .checkpoint import LastGood
 from .flume import FlumeScene, FlumeSimulation
@@ -122,26 +124,18 @@ def settable_keys(case: str) -> list[str]:
 
 def _parse_value(cls: type[SceneBuilder], key: str, text: str) -> Any:
     """Convert ``text`` to the type of field ``key`` of ``cls``."""
-    hint = typing.get_type_hints(cls)[key]
-    optional = False
-    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
-        args = [a for a in typing.get_args(hint) if a is not type(None)]
-        optional = len(args) < len(typing.get_args(hint))
-        hint = args[0]
-    value = text.strip()
-    if optional and value.lower() in ("none", "null", "auto"):
-        return None
-    if hint is float:
-        try:
-            return float(value)
-        except ValueError:
-            raise CliError(f"{key}: expected a number, got {text!r}") from None
-    if hint is int:
-        try:
-            return int(value)
-        except ValueError:
-            raise CliError(f"{key}: expected an integer, got {text!r}") from None
-    return value
+    return parse_setting(typing.get_type_hints(cls)[key], key, text, CliError)
+
+
+def _split_settings(settings: Sequence[str]) -> list[tuple[str, str]]:
+    """``key=value`` items as ``(key, value)`` pairs; CliError for an item without ``=``."""
+    pairs = []
+    for item in settings:
+        pair = split_setting(item)
+        if pair is None:
+            raise CliError(f"--set: expected key=value, got {item!r}")
+        pairs.append(pair)
+    return pairs
 
 
 def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
@@ -160,11 +154,7 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     cls, fixed = CASES[case]
     valid = settable_keys(case)
     overrides: dict[str, Any] = {}
-    for item in settings:
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
-            raise CliError(f"--set: expected key=value, got {item!r}")
+    for key, text in _split_settings(settings):
         if key not in valid:
             why = f"is fixed by the case {case}" if key in fixed else f"is unknown for {case}"
             raise CliError(f"--set: key {key!r} {why}; valid keys: {', '.join(valid)}")
@@ -174,36 +164,15 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
 
 def _flume_builder_from_args(case: str, settings: Sequence[str]) -> FlumeScene:
     """A flume case's scene (:mod:`watersim.flume_cases`) with ``key=value`` overrides."""
-    items: dict[str, str] = {}
-    for item in settings:
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
-            raise CliError(f"--set: expected key=value, got {item!r}")
-        items[key] = text
+    items = dict(_split_settings(settings))
     try:
         return flume_builder(case, items)
     except FlumeCaseError as exc:
         raise CliError(str(exc)) from None
 
 
-def _jsonable(value: Any) -> Any:
-    """Replace non-finite floats by None and NumPy scalars/arrays by Python values."""
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if hasattr(value, "tolist"):
-        return _jsonable(value.tolist())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _write_json(path: Path, data: dict[str, Any]) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(_jsonable(data), indent=2, allow_nan=False) + "\n", "utf-8")
-    tmp.replace(path)
+    write_json_atomic(path, data, indent=2)
 
 
 def _error_record(exc: BaseException) -> dict[str, Any]:
@@ -217,6 +186,41 @@ def _error_record(exc: BaseException) -> dict[str, Any]:
 
 # ------------------------------------------------------------------------------------------------
 # watersim run
+
+
+def _run_recorded(
+    sim: Simulation,
+    until: float,
+    schedule: Sequence[tuple[float, Callable[[Simulation], Any]]],
+    progress: bool,
+    outputs: RunOutputs,
+    before_close: Callable[[], Any] | None = None,
+) -> tuple[str, dict[str, Any] | None]:
+    """Run ``sim`` to ``until`` [s] with ``schedule``; return ``(status, error record)``.
+
+    A monitor stop (status: its kind), Ctrl-C (``"interrupted"``) or a core error (``"error"``)
+    ends the run with its record; whatever happens, ``before_close`` runs, the log gets its
+    ``end`` event and the outputs are closed, so what was written so far stays readable.
+    """
+    status = "ok"
+    error: dict[str, Any] | None = None
+    try:
+        sim.run_schedule(until, schedule, progress=progress)
+    except InstabilityError as exc:
+        status = str(getattr(exc, "kind", "") or "unstable")
+        error = _error_record(exc)
+    except KeyboardInterrupt as exc:
+        status = "interrupted"
+        error = _error_record(exc)
+    except RuntimeError as exc:
+        status = "error"
+        error = _error_record(exc)
+    finally:
+        if before_close is not None:
+            before_close()
+        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
+        outputs.close()
+    return status, error
 
 
 def _still_water_checks(sim: Simulation, builder: Tank) -> dict[str, Any]:
@@ -361,8 +365,6 @@ def cmd_run(args: argparse.Namespace) -> int:
     outputs.log.write("start", case=name, n_particles=sim.n_particles, dp=builder.dp,
                       until=until, threads=threads, version=__version__)
 
-    status = "ok"
-    error: dict[str, Any] | None = None
     t_start = time.perf_counter()
     front_file = open(out / "front.csv", "w", newline="", encoding="utf-8") if is_dambreak else None
     recorder = _Recorder(front_file, float(builder.dp), until,  # type: ignore[arg-type]
@@ -372,23 +374,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         recorder(s)
         keeper(s)
 
-    try:
-        sim.run_schedule(until, [(args.sample_every, sample), *outputs.schedule()],
-                         progress=progress)
-    except InstabilityError as exc:
-        status = str(getattr(exc, "kind", "") or "unstable")
-        error = _error_record(exc)
-    except KeyboardInterrupt as exc:
-        status = "interrupted"
-        error = _error_record(exc)
-    except RuntimeError as exc:
-        status = "error"
-        error = _error_record(exc)
-    finally:
-        if front_file is not None:
-            front_file.close()
-        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
-        outputs.close()
+    status, error = _run_recorded(
+        sim, until, [(args.sample_every, sample), *outputs.schedule()], progress, outputs,
+        front_file.close if front_file is not None else None,
+    )
     wall = time.perf_counter() - t_start
 
     summary: dict[str, Any] = {
@@ -466,24 +455,10 @@ def _run_flume(
             while next_report[0] <= s.time:
                 next_report[0] += until / 10.0
 
-    status = "ok"
-    error: dict[str, Any] | None = None
-    try:
-        sim.run_schedule(until, [(every, lambda s: (on_sample(s), keeper(s))), *outputs.schedule()],
-                         progress=progress)
-    except InstabilityError as exc:
-        status = str(getattr(exc, "kind", "") or "unstable")
-        error = _error_record(exc)
-    except KeyboardInterrupt as exc:
-        status = "interrupted"
-        error = _error_record(exc)
-    except RuntimeError as exc:
-        status = "error"
-        error = _error_record(exc)
-    finally:
-        sim.write_gauges_csv(csv_path)
-        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
-        outputs.close()
+    status, error = _run_recorded(
+        sim, until, [(every, lambda s: (on_sample(s), keeper(s))), *outputs.schedule()], progress,
+        outputs, lambda: sim.write_gauges_csv(csv_path),
+    )
     wall = time.perf_counter() - t_start
 
     analysis: dict[str, Any]

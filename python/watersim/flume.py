@@ -144,6 +144,15 @@ def _finite_tuple(name: str, values: Any, min_len: int = 1) -> tuple[float, ...]
     return tuple(float(v) for v in arr)
 
 
+def _strictly_increasing(name: str, values: Sequence[float]) -> None:
+    """SceneError ``name: must increase strictly (v[i] >= v[i + 1])``, ``v`` the last part of
+    ``name``, at the first pair that does not increase."""
+    symbol = name.rsplit(".", 1)[-1]
+    for i in range(len(values) - 1):
+        if not values[i + 1] > values[i]:
+            raise SceneError(f"{name}: must increase strictly ({symbol}[{i}] >= {symbol}[{i + 1}])")
+
+
 def _optional_name(name: str, value: Any) -> None:
     if value is not None and (not isinstance(value, str) or not value.strip()):
         raise SceneError(f"{name}: must be a non-empty string, got {value!r}")
@@ -208,9 +217,7 @@ class ProfileBeach:
         z = _finite_tuple("beach.z", self.z, 2)
         if len(x) != len(z):
             raise SceneError(f"beach.z: needs as many values as beach.x ({len(x)}), got {len(z)}")
-        for i in range(len(x) - 1):
-            if not x[i + 1] > x[i]:
-                raise SceneError(f"beach.x: must increase strictly (x[{i}] >= x[{i + 1}])")
+        _strictly_increasing("beach.x", x)
         if min(z) < 0.0:
             raise SceneError(f"beach.z: bed heights must not be negative, got {min(z):g}")
         if x[0] < 0.0:
@@ -483,9 +490,7 @@ class TabulatedMotion:
         x = _finite_tuple("wave.x", self.x, 2)
         if len(t) != len(x):
             raise SceneError(f"wave.x: has {len(x)} values but wave.t has {len(t)}")
-        for i in range(len(t) - 1):
-            if not t[i + 1] > t[i]:
-                raise SceneError(f"wave.t: must increase strictly (t[{i}] >= t[{i + 1}])")
+        _strictly_increasing("wave.t", t)
         _set(self, "t", t)
         _set(self, "x", x)
 
@@ -752,6 +757,28 @@ class _Law:
     duration: float | None = None
 
 
+def _harmonic_law(
+    components: list[list[float]], bound: float, paddle: Paddle, period: float, **extra: Any
+) -> _Law:
+    """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over ``components``
+    ``[a, omega, phase]`` with the paddle's start-up ramp over ``ramp_periods`` ``period`` [s];
+    ``bound`` [m] is the largest excursion either way, ``extra`` the other :class:`_Law` fields."""
+    ramp = paddle.ramp_periods * period
+    return _Law(
+        law={
+            "type": "harmonic",
+            "components": components,
+            "ramp_duration": ramp,
+            "ramp_shape": paddle.ramp,
+        },
+        backward=bound,
+        forward=bound,
+        ramp_duration=ramp,
+        period=period,
+        **extra,
+    )
+
+
 @dataclass(frozen=True, kw_only=True)
 class FlumeScene(SceneBuilder):
     """Everything about one flume run: the flume, the wave, the paddle, the gauges and every
@@ -776,6 +803,8 @@ class FlumeScene(SceneBuilder):
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
+        energy_growth_limit: not used: the core's energy monitor skips scenes with a paddle
+            (``density_band`` and ``lost_fraction_limit`` do apply); must stay unset.
 
     Numerical defaults differ from the dam break's in two fields, both for wave propagation:
 
@@ -793,10 +822,12 @@ class FlumeScene(SceneBuilder):
         2: {"coefh": 1.5},
         3: {"coefh": 1.2},
     }
+    _ENERGY_MONITOR: ClassVar[bool] = False  # every flume has a paddle
 
     dim: int | None = None  # type: ignore[assignment]
     coefh: float | None = None  # type: ignore[assignment]
     alpha: float = 0.01
+    energy_growth_limit: float | None = None  # type: ignore[assignment]
     flume: Flume
     wave: Wave
     paddle: Paddle = dataclasses.field(default_factory=Piston)
@@ -1150,21 +1181,9 @@ class FlumeScene(SceneBuilder):
                 components.append(
                     [law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase]
                 )
-            ramp = paddle.ramp_periods * wave.period
-            bound = sum(abs(c[0]) for c in components)
-            return _Law(
-                law={
-                    "type": "harmonic",
-                    "components": components,
-                    "ramp_duration": ramp,
-                    "ramp_shape": paddle.ramp,
-                },
-                backward=bound,
-                forward=bound,
-                ramp_duration=ramp,
-                period=wave.period,
-                design_height=wave.height,
-                stroke=stroke,
+            return _harmonic_law(
+                components, sum(abs(c[0]) for c in components), paddle, wave.period,
+                design_height=wave.height, stroke=stroke,
                 second_order_amplitude=law.second_order_amplitude,
             )
         if isinstance(wave, IrregularWave):
@@ -1194,24 +1213,11 @@ class FlumeScene(SceneBuilder):
                 [float(a), float(w), float(p)]
                 for a, w, p in zip(amplitudes, omegas, motion.phases, strict=True)
             ]
-            ramp = paddle.ramp_periods * wave.tp
             # The core sizes the room behind the paddle with the sum of the amplitudes (a bound
             # of any harmonic law), far above the signal's actual extremes for hundreds of
             # components; the tank must satisfy that bound.
             bound = float(np.sum(np.abs(amplitudes)))
-            return _Law(
-                law={
-                    "type": "harmonic",
-                    "components": components,
-                    "ramp_duration": ramp,
-                    "ramp_shape": paddle.ramp,
-                },
-                backward=bound,
-                forward=bound,
-                ramp_duration=ramp,
-                period=wave.tp,
-                design_height=1.8 * wave.hs,
-            )
+            return _harmonic_law(components, bound, paddle, wave.tp, design_height=1.8 * wave.hs)
         if isinstance(wave, SolitaryWave):
             try:
                 duration = float(wt.solitary_piston_duration(wave.height, depth,

@@ -20,7 +20,6 @@ against the library default of 20. Refine with ``--set dp=...`` (and ``coefsound
 from __future__ import annotations
 
 import dataclasses
-import types
 import typing
 import warnings
 from collections.abc import Callable, Mapping
@@ -32,6 +31,7 @@ import numpy as np
 
 from . import analysis as an
 from . import wave_theory as wt
+from ._settings import is_scalar, parse_setting
 from .flume import (
     DampingZone,
     ElevationGauge,
@@ -88,39 +88,7 @@ class FlumeCaseError(Exception):
 
 def _parse(hint: Any, key: str, text: str) -> Any:
     """``text`` converted to the type ``hint`` (float, int, bool, str, or optional of those)."""
-    optional = False
-    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
-        args = [a for a in typing.get_args(hint) if a is not type(None)]
-        optional = len(args) < len(typing.get_args(hint))
-        hint = args[0]
-    value = text.strip()
-    if optional and value.lower() in ("none", "null", "auto"):
-        return None
-    if hint is bool:
-        if value.lower() in ("1", "true", "yes", "on"):
-            return True
-        if value.lower() in ("0", "false", "no", "off"):
-            return False
-        raise FlumeCaseError(f"{key}: expected true or false, got {text!r}")
-    if hint is float:
-        try:
-            return float(value)
-        except ValueError:
-            raise FlumeCaseError(f"{key}: expected a number, got {text!r}") from None
-    if hint is int:
-        try:
-            return int(value)
-        except ValueError:
-            raise FlumeCaseError(f"{key}: expected an integer, got {text!r}") from None
-    return value
-
-
-def _scalar(hint: Any) -> bool:
-    """Whether a field of this type can be set from one ``--set`` value."""
-    if isinstance(hint, types.UnionType) or typing.get_origin(hint) is typing.Union:
-        args = [a for a in typing.get_args(hint) if a is not type(None)]
-        return len(args) == 1 and _scalar(args[0])
-    return hint in (float, int, bool, str)
+    return parse_setting(hint, key, text, FlumeCaseError)
 
 
 class _Settings:
@@ -140,7 +108,7 @@ class _Settings:
         hints = typing.get_type_hints(type(obj))
         changes: dict[str, Any] = {}
         for f in dataclasses.fields(obj):  # type: ignore[arg-type]
-            if f.name in skip or not f.init or not _scalar(hints[f.name]):
+            if f.name in skip or not f.init or not is_scalar(hints[f.name]):
                 continue
             key = f"{prefix}.{f.name}"
             self.keys.append(key)
@@ -166,7 +134,7 @@ class _Settings:
         hints = typing.get_type_hints(FlumeScene)
         out = dict(defaults)
         for name in (*SceneBuilder.field_names(), "sample_interval"):
-            if name == "dim":
+            if name in ("dim", "energy_growth_limit"):  # fixed by the flume, unused with a paddle
                 continue
             self.keys.append(name)
             if name in self.items:

@@ -11,7 +11,6 @@ Each snapshot holds every particle as a vertex with the point fields ``velocity`
 from __future__ import annotations
 
 import json
-import math
 import time
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
@@ -22,6 +21,7 @@ import meshio
 import numpy as np
 import numpy.typing as npt
 
+from ._jsonio import json_ready
 from .simulation import Simulation
 
 __all__ = ["RunLog", "RunOutputs", "SnapshotWriter", "snapshot_mesh"]
@@ -99,19 +99,6 @@ class SnapshotWriter:
         tmp.replace(self.pvd_path)
 
 
-def _json_ready(value: Any) -> Any:
-    """NumPy values as Python ones and non-finite floats as None (strict JSON)."""
-    if isinstance(value, dict):
-        return {str(k): _json_ready(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_json_ready(v) for v in value]
-    if hasattr(value, "tolist"):
-        return _json_ready(value.tolist())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 class RunLog:
     """``log.jsonl``: the run's events, one JSON object per line, flushed as they happen (so a
     crashed or interrupted run keeps its log).
@@ -134,7 +121,7 @@ class RunLog:
         if self._file is None:
             raise ValueError(f"{self.path}: the log is closed")
         record = {"event": event, "wall_s": round(time.perf_counter() - self._start, 6), **fields}
-        self._file.write(json.dumps(_json_ready(record), allow_nan=False) + "\n")
+        self._file.write(json.dumps(json_ready(record), allow_nan=False) + "\n")
         self._file.flush()
 
     def sample(self, sim: Simulation, **fields: Any) -> None:

@@ -46,6 +46,7 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from ._core import SceneError
+from ._settings import NONE_WORDS, split_setting
 from .flume import (
     RAMPS,
     SPECTRA,
@@ -515,15 +516,15 @@ def apply_settings(data: dict[str, Any], settings: Sequence[str], source: str = 
     takes its default. The result is checked like the file itself.
     """
     for item in settings:
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
+        pair = split_setting(item)
+        if pair is None:
             raise SceneFileError(f"{source}: --set: expected key=value, got {item!r}")
+        key, text = pair
         tokens = _tokens(key, source)
         hint = _hint_at(data, tokens)
         members = _union_args(hint) or ()
         remove = (
-            text.strip().lower() in ("none", "null", "auto")
+            text.strip().lower() in NONE_WORDS
             and type(None) in members
             and str not in members
         )
@@ -736,9 +737,11 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     yield ('`type = "dambreak"` (top level)', "", DamBreak, ())
     yield ('`type = "tank"` (top level)', "", Tank, ())
     yield ('`type = "flume"` (top level)',
-           "The numerical fields are those of the dam break above, with the defaults below.",
+           "The numerical fields are those of the dam break above, with the defaults below, "
+           "except `energy_growth_limit`: the core's energy monitor does not run in a scene "
+           "with a paddle, so a flume refuses it.",
            FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "dp",
-                                                          "until")))
+                                                          "until")) + ("energy_growth_limit",))
     yield ("`[flume]`", "", Flume, ())
     for cls in (PlaneBeach, ProfileBeach):
         yield (f'`[flume.beach]` with `type = "{TAGS[cls]}"`', "", cls, ())

@@ -30,6 +30,10 @@ Default numerics, shared by every case, and why:
   (Molteni & Colagrossi 2009; Antuono et al. 2010).
 - ``integrator="symplectic"``: second-order, time-reversible scheme, the DualSPHysics default.
 - ``rho0=1000`` kg/m^3, ``gravity=9.81`` m/s^2.
+- Stability monitors (docs/stability.md): ``density_band=0.5``, ``lost_fraction_limit=0.01``,
+  ``energy_growth_limit=0.05``, the core's own defaults (``crates/sph-core/src/scene.rs``):
+  loose enough that a healthy run never trips them, tight enough to stop a diverging one
+  within a few steps.
 """
 
 from __future__ import annotations
@@ -63,6 +67,15 @@ DIFFUSION_MODELS: tuple[str, ...] = ("none", "molteni", "fourtakas")
 """Density diffusion terms the core knows."""
 INTEGRATORS: tuple[str, ...] = ("symplectic", "verlet")
 """Time integration schemes the core knows."""
+
+MAX_DENSITY_BAND = 1.0
+"""Largest ``density_band`` accepted: the band ``rho0 (1 -+ density_band)`` then reaches
+density 0, and a wider one bounds nothing below."""
+
+MAX_ENERGY_GROWTH_LIMIT = 1.0
+"""Largest ``energy_growth_limit`` accepted: an unforced fluid whose mechanical energy grew by its
+whole initial potential energy is no solution any more, so a looser monitor would never stop a
+run that needs stopping."""
 
 MIN_COEFH = 0.5
 """Smallest ``coefh`` accepted. The core sizes its cell grid by h and does not bound the cell
@@ -152,6 +165,14 @@ class SceneBuilder:
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
         boundary_layers: wall particle layers; ``None``: ``ceil(2h / dp)``, the kernel support.
         until: simulated end time [s] used by ``watersim run``.
+        density_band: stability monitor: the run stops (``density_out_of_range``) when a
+            density leaves ``rho0 (1 -+ density_band)`` [-], in (0, 1].
+        lost_fraction_limit: stability monitor: the run stops (``out_of_domain``) when more than
+            this fraction of the fluid particles has left the domain [-], in [0, 1].
+        energy_growth_limit: stability monitor of scenes without a paddle: the run stops
+            (``energy_growth``) when the fluid's mechanical energy exceeds its initial value by
+            more than this fraction of the initial potential energy above the floor [-], in
+            (0, 1].
     """
 
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {}
@@ -179,6 +200,14 @@ class SceneBuilder:
     h_swl: float | None = None
     boundary_layers: int | None = None
     until: float | None = None
+    density_band: float = 0.5
+    lost_fraction_limit: float = 0.01
+    energy_growth_limit: float = 0.05
+
+    _ENERGY_MONITOR: ClassVar[bool] = True
+    """Whether the core's energy monitor runs for this scene (it skips scenes with a paddle,
+    ``check_energy`` in ``crates/sph-core/src/simulation.rs``), so ``energy_growth_limit`` means
+    something."""
 
     def __post_init__(self) -> None:
         if isinstance(self.dim, bool) or self.dim not in (2, 3):
@@ -223,7 +252,32 @@ class SceneBuilder:
         if self.boundary_layers is not None:
             _integer("boundary_layers", self.boundary_layers, 1)
         _positive("until", self.until)
+        self._validate_monitors()
         self._validate_geometry()
+
+    def _validate_monitors(self) -> None:
+        """The stability monitor thresholds (ranges: docs/stability.md, the constants above)."""
+        if _positive("density_band", self.density_band) > MAX_DENSITY_BAND:
+            raise SceneError(
+                f"density_band: must be at most {MAX_DENSITY_BAND:g} (the band rho0 (1 -+ "
+                f"density_band) then reaches zero density), got {self.density_band!r}"
+            )
+        if _non_negative("lost_fraction_limit", self.lost_fraction_limit) > 1.0:
+            raise SceneError(
+                f"lost_fraction_limit: must be at most 1 (a fraction of the fluid), got "
+                f"{self.lost_fraction_limit!r}"
+            )
+        if not self._ENERGY_MONITOR:
+            if self.energy_growth_limit is not None:
+                raise SceneError(
+                    "energy_growth_limit: the core's energy monitor does not run in a scene with "
+                    "a paddle; leave it unset"
+                )
+        elif _positive("energy_growth_limit", self.energy_growth_limit) > MAX_ENERGY_GROWTH_LIMIT:
+            raise SceneError(
+                f"energy_growth_limit: must be at most {MAX_ENERGY_GROWTH_LIMIT:g} (a growth by "
+                f"the whole initial potential energy), got {self.energy_growth_limit!r}"
+            )
 
     def _validate_geometry(self) -> None:  # pragma: no cover - overridden
         raise NotImplementedError
@@ -255,7 +309,7 @@ class SceneBuilder:
         integrator: dict[str, Any] = {"scheme": self.integrator}
         if self.integrator == "verlet":
             integrator["euler_every"] = int(self.euler_every)
-        return {
+        physics: dict[str, Any] = {
             "dim": int(self.dim),
             "dp": float(self.dp),  # type: ignore[arg-type]
             "gravity": float(self.gravity),
@@ -269,7 +323,12 @@ class SceneBuilder:
             "viscosity": viscosity,
             "diffusion": diffusion,
             "integrator": integrator,
+            "density_band": float(self.density_band),
+            "lost_fraction_limit": float(self.lost_fraction_limit),
         }
+        if self._ENERGY_MONITOR:
+            physics["energy_growth_limit"] = float(self.energy_growth_limit)
+        return physics
 
     def to_scene(self) -> dict[str, Any]:
         """The scene as a JSON-ready dict in the core's form (checked first)."""

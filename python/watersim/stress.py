@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import dataclasses
-import json
 import math
 import multiprocessing
 import os
@@ -43,6 +42,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from ._jsonio import write_json_atomic
 
 __all__ = [
     "GROUPS",
@@ -942,26 +943,11 @@ def _resolution_section(runs: list[dict[str, Any]]) -> list[str]:
     return lines
 
 
-def _jsonable(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if hasattr(value, "tolist"):
-        return _jsonable(value.tolist())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def write_json(path: str | Path, records: list[dict[str, Any]], meta: dict[str, Any]) -> Path:
     """``{"meta": ..., "runs": [records]}`` as JSON (non-finite numbers as null)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    data = {"meta": meta, "runs": records}
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(_jsonable(data), indent=1, allow_nan=False) + "\n", "utf-8")
-    tmp.replace(path)
+    write_json_atomic(path, {"meta": meta, "runs": records}, indent=1)
     return path
 
 

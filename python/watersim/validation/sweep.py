@@ -27,6 +27,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import Any
 
+from .._jsonio import write_json_atomic
 from .cases import CASES, run_case
 
 __all__ = ["add_parser", "cmd_validate", "machine_info", "parse_resolutions", "plan",
@@ -95,11 +96,7 @@ def machine_info() -> dict[str, Any]:
 
 def _write_runs(path: Path, records: list[dict[str, Any]]) -> None:
     """Rewrite the JSON list of runs atomically (a crash leaves the previous version)."""
-    from ..cli import _jsonable
-
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(_jsonable(records), indent=1, allow_nan=False) + "\n", "utf-8")
-    tmp.replace(path)
+    write_json_atomic(path, records, indent=1)
 
 
 def _stamp(record: dict[str, Any]) -> dict[str, Any]:
