@@ -695,7 +695,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 let message = match kind {
                     InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
                     _ => format!(
-                        "density {:.3} kg/m^3 outside [{lo:.1}, {hi:.1}] (rho0 -+ {:.0} %)",
+                        "density {:.3} kg/m^3 outside [{lo:.3}, {hi:.3}] (rho0 -+ {:.2} %)",
                         p.rho[i],
                         self.c.density_band * 100.0
                     ),

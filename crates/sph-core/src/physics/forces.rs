@@ -18,8 +18,8 @@ use crate::particles::KIND_EXCLUDED;
 ///
 /// Measured and dropped (docs/benchmarks.md): a branch-free two-pass variant that compacts the
 /// candidates inside the support before the pair work (particle lattices make the in/out branch
-/// predictable), and trimming the stencil rows to the support sphere (its per-row arithmetic
-/// cost more than the candidates it saved, 2D and 3D).
+/// predictable), and trimming the stencil rows to the support sphere, per group or once for
+/// all groups (its per-row arithmetic cost more than the candidates it saved, 2D and 3D).
 #[inline(always)]
 fn for_each_pair<D: Dim>(
     grid: &CellGrid<D>,
