@@ -215,7 +215,8 @@ def phase_averaged(
     if np.count_nonzero(sel) < 4:
         return None
     try:
-        return an.phase_average(records.eta[np.ix_(sel, list(cols))], records.t[sel], period)
+        idx = np.asarray(cols, dtype=np.intp)
+        return an.phase_average(records.eta[np.ix_(sel, idx)], records.t[sel], period)
     except ValueError:
         return None
 
@@ -259,6 +260,10 @@ def plot_phase_averaged_gauges(
                 label=f"phase average over {pa.n_waves} waves (+- 1 std)")
         if annotations and x in annotations:
             note(ax, annotations[x])
+        if np.ptp(pa.mean[:, 0]) == 0.0 and np.all(pa.std == 0.0):
+            ax.text(0.5, 0.5, f"dry all along: reads the bed level (still depth "
+                    f"{100 * records.still_depth[j]:.1f} cm)", transform=ax.transAxes,
+                    ha="center", fontsize=8, color="tab:red")
         ax.legend(fontsize=7, loc="lower right")
     axes[-1, 0].set_xlabel("(t - start of the wave) / T [-]  (phase 0: paddle start)")
     fig.suptitle(title, fontsize=10)
@@ -304,8 +309,9 @@ def plot_envelopes(
             ax.axvline(br["position"], color="tab:red", lw=1.2,
                        label=f"breaking here: H/d > 0.78 at x = {br['position']:.2f} m")
         if br.get("max_height_position") is not None:
-            ax.axvline(br["max_height_position"], color="tab:red", lw=1.0, ls=":",
-                       label=f"highest wave here: x = {br['max_height_position']:.2f} m")
+            xm = br["max_height_position"]
+            ax.axvline(xm, color="tab:red", lw=1.0, ls=":",
+                       label=f"highest wave over the slope: x = {xm:.2f} m")
     if br.get("position") is None:
         note(ax1, "no wave reached H/d > 0.78 at a gauge: no breaking found")
     hs = [(g["x"], g["H_mean"]) for g in analysis.get("gauges", []) if g.get("H_mean")]

@@ -98,7 +98,7 @@ def make(dp: float, periods: float) -> tuple[ws.Flume, dict[str, Any]]:
         # a vertical line of points from just above the bed to above the highest crest
         bed = (x - TOE) * SLOPE
         zs = np.linspace(bed + 0.5 * dp, DEPTH + HEIGHT, 12)
-        gauges.append(ws.VelocityProbe(points=[(x, float(z)) for z in zs], name=f"u_x{x:.3f}"))
+        gauges.append(ws.VelocityProbe(points=tuple((x, float(z)) for z in zs), name=f"u_x{x:.3f}"))
     return flume, {
         "wave": ws.RegularWave(height=HEIGHT, period=PERIOD),
         "paddle": ws.Piston(order=2, ramp_periods=2.0),
@@ -184,7 +184,7 @@ def fig9_runup(records: Records, analysis: dict[str, Any], path: Path) -> Path:
     if records.runup is not None:
         ax1.plot(records.t, records.runup, color="tab:red", lw=0.8)
     window = info.get("window")
-    if window and values.size:
+    if window and values.size and records.runup is not None:
         ax1.axvspan(window[0], window[1], color="0.92", zorder=0, label="analysed part")
         per = an.runup_per_wave(records.runup[records.t >= window[0]],
                                 records.t[records.t >= window[0]], PERIOD)
@@ -219,6 +219,8 @@ def fig9_runup(records: Records, analysis: dict[str, Any], path: Path) -> Path:
                     label=f"{name}: {100 * value:.1f} % (watersim.wave_theory)")
     for name, value in SEED_TABLE3.items():
         ax2.plot([100 * value], [0], "|", color="0.3", ms=14)
+        ax2.annotate(name.split()[0] + " " + name.split()[1], (100 * value, 0), fontsize=5,
+                     rotation=90, xytext=(2, 8), textcoords="offset points", color="0.3")
     ax2.plot([], [], "|", color="0.3", ms=10, label="seed 001 Table 3 as printed")
     ax2.set_xlabel(f"R / H [%]  (H = {HEIGHT} m, xi = {xi:.2f})")
     ax2.set_ylabel("waves")
@@ -281,7 +283,7 @@ def fig10_phase_averages(scene: ws.FlumeScene, records: Records, analysis: dict[
         ax.set_ylim(-0.25, 0.15)
         ax.set_ylabel(f"phi = {deg:.0f} deg\neta [m]", fontsize=8)
         ax.grid(alpha=0.3)
-        for name, (x, z, phases, mean, n_w) in prof.items():
+        for x, z, phases, mean, n_w in prof.values():
             i = _phase_index(phases, deg)
             depth_here = float(scene.still_depth(x))
             axv.plot(mean[i] / math.sqrt(wt.G * depth_here), z, "o-", ms=3,

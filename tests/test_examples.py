@@ -91,11 +91,11 @@ def test_example_figures_from_a_synthetic_record(name: str, tmp_path: Path) -> N
 
 
 def test_kimmoun_script_runs_end_to_end_and_replots(tmp_path: Path) -> None:
-    """A 1.5-period run at dp = 0.12 m (about 1,200 particles): every figure is written even
+    """A one-period run at dp = 0.15 m: every figure is written even
     though no wave reaches the beach (they say so), and ``--replot`` redraws them."""
     mod = _load("kimmoun_flume")
     out = tmp_path / "run"
-    written = mod.main(["--dp", "0.12", "--periods", "1.5", "--out", str(out)])
+    written = mod.main(["--dp", "0.15", "--periods", "1.0", "--out", str(out)])
     names = {p.name for p in written}
     assert names == {"fig4_toe.png", "fig5_breaking_gauges.png", "fig8_envelopes.png",
                      "fig9_runup.png", "fig10_phase_averages.png"}
@@ -103,7 +103,7 @@ def test_kimmoun_script_runs_end_to_end_and_replots(tmp_path: Path) -> None:
         assert (out / f).is_file(), f
     for p in written:
         p.unlink()
-    again = mod.main(["--dp", "0.12", "--periods", "1.5", "--out", str(out), "--replot"])
+    again = mod.main(["--dp", "0.15", "--periods", "1.0", "--out", str(out), "--replot"])
     assert all(p.is_file() for p in again) and len(again) == 5
 
 
