@@ -83,13 +83,21 @@ def test_time_step_collapse_from_a_runaway_density() -> None:
     sim = _small_dambreak().build()
     sim.step(2)
 
+    squeezed: dict[str, int] = {}
+
     def squeeze(state: dict, fluid: np.ndarray) -> None:
         state["densities"][fluid[3]] = 1e5  # pressure ~ B (100)^7: the step falls to ~1e-10 s
+        squeezed["id"] = int(state["ids"][fluid[3]])
 
     _inject(sim, squeeze)
     with pytest.raises(ws.InstabilityError) as info:
         sim.step(2)
     _check_fields(info.value, "time_step_collapse", sim)
+    # the error names the particle whose limit set the step: the squeezed one or a neighbour
+    # it throws out
+    ids = np.asarray(sim.ids)
+    squeezed_at = np.asarray(sim.positions)[np.flatnonzero(ids == squeezed["id"])[0]]
+    assert np.hypot(*(np.asarray(info.value.position) - squeezed_at)) < 4 * 0.1  # dp = 0.1
     # this monitor fires before the step is taken: step and time are those of the last good step
     assert info.value.step == 2 and sim.steps == 2
     assert "below the floor" in str(info.value)
@@ -138,6 +146,11 @@ def test_energy_growth_without_forcing() -> None:
         sim.step(60)
     _check_fields(info.value, "energy_growth", sim)
     assert info.value.step == 50  # the energy is checked every 50 steps
+    # it names the fastest fluid particle
+    speed = np.linalg.norm(np.asarray(sim.velocities), axis=1)
+    fluid_slots = np.flatnonzero(np.asarray(sim.kinds) == 0)
+    fastest = fluid_slots[np.argmax(speed[fluid_slots])]
+    assert info.value.particle == int(np.asarray(sim.ids)[fastest])
     assert "exceeds its initial" in str(info.value)
 
 

@@ -382,9 +382,21 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let e = self.fluid_energy();
         let allowed = e0 + self.scene.energy_growth_limit * pot0.abs().max(Real::MIN_POSITIVE);
         if e > allowed {
+            // name the fastest fluid particle (lowest slot on ties)
+            let fs = self.p.fluid_start();
+            let fastest = (fs..self.p.len())
+                .filter(|&i| self.p.kind[i] != KIND_EXCLUDED)
+                .fold(None, |best: Option<(Real, usize)>, i| {
+                    let v2 = self.p.vel[i].length_squared();
+                    match best {
+                        Some((b, _)) if !(v2 > b) => best,
+                        _ => Some((v2, i)),
+                    }
+                })
+                .map(|(_, i)| i);
             return Err(self.instability(
                 InstabilityKind::EnergyGrowth,
-                None,
+                fastest,
                 format!(
                     "fluid energy {e:.6e} J exceeds its initial {e0:.6e} J by {:.2} % of the initial potential energy",
                     100.0 * (e - e0) / pot0.abs().max(Real::MIN_POSITIVE)
@@ -651,9 +663,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let dt_f = if lim.max_acc > 0.0 { (self.c.h / lim.max_acc).sqrt() } else { Real::INFINITY };
         let dt = self.c.cfl * dt_f.min(lim.min_dt_cv);
         if !dt.is_finite() || dt < self.dt_floor {
+            // the particle whose limit set the step (force or viscous/acoustic)
+            let slot = if dt_f < lim.min_dt_cv { lim.acc_slot } else { lim.cv_slot };
+            let slot = (slot < self.p.len()).then_some(slot);
             return Err(self.instability(
                 InstabilityKind::TimeStepCollapse,
-                None,
+                slot,
                 format!("time step {dt:e} s below the floor {:e} s", self.dt_floor),
             ));
         }

@@ -55,19 +55,37 @@ pub struct Fields<'a, D: Dim> {
     pub fluid_start: usize,
 }
 
-/// What the variable time step needs from the force loop (Monaghan & Kos 1999).
+/// What the variable time step needs from the force loop (Monaghan & Kos 1999), with the
+/// particles that set each limit (storage slots; `usize::MAX` without fluid), so a collapsing
+/// step can name its particle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepLimits {
     /// Largest fluid acceleration magnitude `|f_a|` [m/s^2].
     pub max_acc: Real,
     /// `min_a h / (c_a + max_b |h v_ab.r_ab / (r_ab^2 + eta^2)|)` [s].
     pub min_dt_cv: Real,
+    /// Slot of the particle with `max_acc`, and of the one with `min_dt_cv`.
+    pub acc_slot: usize,
+    pub cv_slot: usize,
 }
 
 impl StepLimits {
-    const NONE: StepLimits = StepLimits { max_acc: 0.0, min_dt_cv: Real::INFINITY };
+    const NONE: StepLimits =
+        StepLimits { max_acc: 0.0, min_dt_cv: Real::INFINITY, acc_slot: usize::MAX, cv_slot: usize::MAX };
+    /// Associative and commutative (ties go to the lower slot), so the result does not depend
+    /// on how rayon splits the work.
     fn merge(self, o: StepLimits) -> StepLimits {
-        StepLimits { max_acc: self.max_acc.max(o.max_acc), min_dt_cv: self.min_dt_cv.min(o.min_dt_cv) }
+        let (max_acc, acc_slot) = if o.max_acc > self.max_acc || (o.max_acc == self.max_acc && o.acc_slot < self.acc_slot) {
+            (o.max_acc, o.acc_slot)
+        } else {
+            (self.max_acc, self.acc_slot)
+        };
+        let (min_dt_cv, cv_slot) = if o.min_dt_cv < self.min_dt_cv || (o.min_dt_cv == self.min_dt_cv && o.cv_slot < self.cv_slot) {
+            (o.min_dt_cv, o.cv_slot)
+        } else {
+            (self.min_dt_cv, self.cv_slot)
+        };
+        StepLimits { max_acc, min_dt_cv, acc_slot, cv_slot }
     }
 }
 
@@ -172,7 +190,7 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
             let a_total = sum_acc * c.mass + g;
             *acc_a = a_total;
             *drho_a = c.mass * (sum_drho + c.delta_h_c0 * sum_diff);
-            StepLimits { max_acc: a_total.length(), min_dt_cv: c.h / (ca + max_visc) }
+            StepLimits { max_acc: a_total.length(), min_dt_cv: c.h / (ca + max_visc), acc_slot: a, cv_slot: a }
         })
         .reduce(|| StepLimits::NONE, StepLimits::merge)
 }
