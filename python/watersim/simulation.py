@@ -113,8 +113,11 @@ class Simulation:
 
     @property
     def pressures(self) -> npt.NDArray[np.float64]:
-        """(N,) pressures [Pa], read-only view in storage order."""
-        return self._sim.pressures
+        """(N,) pressures [Pa], storage order: the equation of state of ``densities``,
+        computed on each access (the core does not store pressure), read-only like the views."""
+        pressures = self._sim.pressures
+        pressures.flags.writeable = False
+        return pressures
 
     @property
     def kinds(self) -> npt.NDArray[np.uint8]:

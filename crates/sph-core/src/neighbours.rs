@@ -20,6 +20,21 @@ pub const GROUP_FIXED: usize = 0;
 pub const GROUP_MOVING: usize = 1;
 pub const GROUP_FLUID: usize = 2;
 
+/// Largest stencil reach the grid accepts.
+pub const MAX_REACH: usize = 3;
+
+/// The rows of one stencil: `(first, end)` cell ranges, `n` of them.
+pub struct StencilRows {
+    pub n: usize,
+    pub cells: [(u32, u32); (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1)],
+}
+
+impl Default for StencilRows {
+    fn default() -> Self {
+        Self { n: 0, cells: [(0, 0); (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1)] }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct CellGrid<D: Dim> {
     origin: D::V,
@@ -39,7 +54,7 @@ impl<D: Dim> CellGrid<D> {
     /// A grid covering `[lo, hi]` for `n` particles, finding all pairs closer than `support` with
     /// cells of side `support / reach`.
     pub fn new(lo: D::V, hi: D::V, support: Real, reach: usize, n: usize) -> Self {
-        let reach = reach.max(1);
+        let reach = reach.clamp(1, MAX_REACH);
         let cell_size = support / reach as Real;
         let mut dims = [1usize; 3];
         for (k, d) in dims.iter_mut().enumerate().take(D::DIM) {
@@ -125,6 +140,69 @@ impl<D: Dim> CellGrid<D> {
         self.keys = all_keys;
     }
 
+    /// The stencil rows around `p`, trimmed to the cells that reach within the support of `p`:
+    /// a row is left out when its nearest point in (y, z) is a support or more away, and its
+    /// x range ends at the last cell whose nearest point is within the support (about a third
+    /// fewer candidates in 3D with `reach = 2`). The rows keep the order of
+    /// [`CellGrid::for_each_near`], so the pairs found (those within the support) and their
+    /// order are the same. Cell ranges; [`CellGrid::row_slots`] turns them into particle slots.
+    /// For loops that cannot take a closure: a closure is compiled without the target features
+    /// of the function that calls it (the AVX2 force loop).
+    #[inline(always)]
+    pub fn stencil_rows(&self, p: D::V, rows: &mut StencilRows) {
+        let c = self.coords(p);
+        let r = self.reach;
+        // Squared distance, in cell units, from p to the nearest point of the cell `o` cells
+        // away along axis k (o in -r..=r, stored at o + r); the support is `r` cells. A point
+        // outside the grid (clamped to an edge cell) is not trimmed: its fraction is unknown.
+        let mut near2 = [[0.0 as Real; 2 * MAX_REACH + 1]; 3];
+        let mut trim = true;
+        for (k, nk) in near2.iter_mut().enumerate().take(D::DIM) {
+            let u = (p.get(k) - self.origin.get(k)) * self.inv_cell - c[k] as Real;
+            trim &= (0.0..1.0).contains(&u);
+            for o in 1..=r {
+                let below = u + (o - 1) as Real;
+                let above = o as Real - u;
+                nk[r - o] = below * below;
+                nk[r + o] = above * above;
+            }
+        }
+        // A hair above r^2: rounding of the cell-unit distances must never drop a pair.
+        let limit = if trim { (r * r) as Real * (1.0 + 1e-9) } else { Real::INFINITY };
+        let span = |k: usize| (c[k].saturating_sub(r), (c[k] + r).min(self.dims[k] - 1));
+        let (x_lo, x_hi) = span(0);
+        let (y_lo, y_hi) = span(1);
+        let (z_lo, z_hi) = if D::DIM == 3 { span(2) } else { (0, 0) };
+        rows.n = 0;
+        for z in z_lo..=z_hi {
+            let dz2 = if D::DIM == 3 { near2[2][z + r - c[2]] } else { 0.0 };
+            for y in y_lo..=y_hi {
+                let d2 = dz2 + near2[1][y + r - c[1]];
+                if d2 >= limit {
+                    continue;
+                }
+                let mut lo = x_lo;
+                while lo < c[0] && d2 + near2[0][lo + r - c[0]] >= limit {
+                    lo += 1;
+                }
+                let mut hi = x_hi;
+                while hi > c[0] && d2 + near2[0][hi + r - c[0]] >= limit {
+                    hi -= 1;
+                }
+                let row = self.dims[0] * (y + self.dims[1] * z);
+                rows.cells[rows.n] = ((row + lo) as u32, (row + hi + 1) as u32);
+                rows.n += 1;
+            }
+        }
+    }
+
+    /// Particle slots `(first, end)` of group `g` in row `i` of `rows`.
+    #[inline(always)]
+    pub fn row_slots(&self, g: usize, rows: &StencilRows, i: usize) -> (u32, u32) {
+        let (lo, hi) = rows.cells[i];
+        (self.starts[g][lo as usize], self.starts[g][hi as usize])
+    }
+
     /// Calls `f(b)` for every particle `b` of group `g` in the cells around `p`, in a fixed order.
     #[inline(always)]
     pub fn for_each_near(&self, g: usize, p: D::V, mut f: impl FnMut(usize)) {
@@ -180,6 +258,15 @@ mod tests {
             let mut brute: Vec<usize> = (0..n)
                 .filter(|&b| (sorted[a] - sorted[b]).length_squared() < radius * radius)
                 .collect();
+            // the trimmed rows find the same pairs in the same order
+            let mut rows = StencilRows::default();
+            grid.stencil_rows(sorted[a], &mut rows);
+            let mut trimmed = Vec::new();
+            for i in 0..rows.n {
+                let (lo, hi) = grid.row_slots(GROUP_FLUID, &rows, i);
+                trimmed.extend((lo as usize..hi as usize).filter(|&b| (sorted[a] - sorted[b]).length_squared() < radius * radius));
+            }
+            assert_eq!(trimmed, found, "trimmed stencil, particle {a}, reach {reach}");
             let mut f2 = found.clone();
             f2.sort();
             brute.sort();

@@ -5,7 +5,7 @@
 //! `neighbours.rs`), so `id` maps a storage slot back to the particle's creation order.
 //! Arrays are allocated once per run and never reallocated: Python reads them as NumPy views.
 
-use crate::math::{Dim, Real};
+use crate::math::{Dim, Real, Vector};
 
 /// Particle kind codes, as exposed to Python.
 pub const KIND_FLUID: u8 = 0;
@@ -19,9 +19,9 @@ pub struct Particles<D: Dim> {
     pub pos: Vec<D::V>,
     pub vel: Vec<D::V>,
     pub rho: Vec<Real>,
-    /// Pressure from the equation of state, refreshed before every force evaluation.
-    pub press: Vec<Real>,
-    /// `P / rho^2`, the momentum equation's per-particle factor, refreshed with `press`.
+    /// `P / rho^2`, the momentum equation's per-particle factor, refreshed from `rho` before
+    /// every force evaluation. (Pressure itself is not stored: 8 bytes per particle saved; it
+    /// is computed from `rho` where it is read.)
     pub p_rho2: Vec<Real>,
     /// Creation order of the particle in each storage slot.
     pub id: Vec<u32>,
@@ -54,25 +54,34 @@ impl<D: Dim> Particles<D> {
         use std::mem::size_of;
         let v = size_of::<D::V>();
         (self.pos.capacity() + self.vel.capacity() + self.acc.capacity()) * v
-            + (self.rho.capacity() + self.press.capacity() + self.p_rho2.capacity() + self.drho.capacity()) * size_of::<Real>()
+            + (self.rho.capacity() + self.p_rho2.capacity() + self.drho.capacity()) * size_of::<Real>()
             + self.id.capacity() * size_of::<u32>()
             + self.kind.capacity()
     }
 }
 
 /// Applies `perm` (new slot -> old absolute index) to `data[range]`, gathering through
-/// `scratch`: one buffer of the widest element type serves every array (reinterpreted as `T`),
-/// so sorting costs one vector's worth of memory per particle rather than one per type.
-pub fn permute<T: bytemuck::Pod + Send + Sync, S: bytemuck::Pod>(
-    data: &mut [T],
-    range: std::ops::Range<usize>,
-    perm: &[u32],
-    scratch: &mut [S],
-) {
+/// `scratch`: one 8-byte-per-particle buffer serves every array (reinterpreted as `T`), so
+/// sorting costs 8 bytes per particle rather than one vector per type. `T` must be at most
+/// 8 bytes wide; vectors go through [`permute_vectors`].
+pub fn permute<T: bytemuck::Pod + Send + Sync>(data: &mut [T], range: std::ops::Range<usize>, perm: &[u32], scratch: &mut [u64]) {
     use rayon::prelude::*;
     let n = range.len();
-    let buf = &mut bytemuck::cast_slice_mut::<S, T>(scratch)[..n];
+    let buf = &mut bytemuck::cast_slice_mut::<u64, T>(scratch)[..n];
     let src = &*data;
     buf.par_iter_mut().zip(perm[..n].par_iter()).for_each(|(dst, &old)| *dst = src[old as usize]);
     data[range].copy_from_slice(buf);
+}
+
+/// [`permute`] for vectors, one component at a time through the same 8-byte buffer.
+pub fn permute_vectors<V: Vector>(data: &mut [V], range: std::ops::Range<usize>, perm: &[u32], scratch: &mut [u64]) {
+    use rayon::prelude::*;
+    let n = range.len();
+    let buf = &mut bytemuck::cast_slice_mut::<u64, Real>(scratch)[..n];
+    let dim = std::mem::size_of::<V>() / std::mem::size_of::<Real>();
+    for k in 0..dim {
+        let src = &*data;
+        buf.par_iter_mut().zip(perm[..n].par_iter()).for_each(|(dst, &old)| *dst = src[old as usize].get(k));
+        data[range.clone()].par_iter_mut().zip(buf.par_iter()).for_each(|(v, &x)| v.set(k, x));
+    }
 }

@@ -138,8 +138,9 @@ impl Simulation {
     }
     #[getter]
     fn pressures<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        // computed from the densities on each access (the core does not store pressure)
         let this = slf.borrow();
-        view_1d(slf, this.inner.pressures())
+        Ok(PyArray1::from_vec(slf.py(), this.inner.pressures()))
     }
     #[getter]
     fn kinds<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<u8>>> {

@@ -70,11 +70,11 @@ pub struct StepLimits {
 }
 
 impl StepLimits {
-    const NONE: StepLimits =
+    pub(crate) const NONE: StepLimits =
         StepLimits { max_acc: 0.0, min_dt_cv: Real::INFINITY, acc_slot: usize::MAX, cv_slot: usize::MAX };
     /// Associative and commutative (ties go to the lower slot), so the result does not depend
     /// on how rayon splits the work.
-    fn merge(self, o: StepLimits) -> StepLimits {
+    pub(crate) fn merge(self, o: StepLimits) -> StepLimits {
         let (max_acc, acc_slot) = if o.max_acc > self.max_acc || (o.max_acc == self.max_acc && o.acc_slot < self.acc_slot) {
             (o.max_acc, o.acc_slot)
         } else {
@@ -89,7 +89,24 @@ impl StepLimits {
     }
 }
 
-/// Continuity (and momentum) for fluid particles: writes `acc` and `drho` for the fluid range
+/// Continuity and momentum for fluid particles: the batched (SIMD) loop of `batched.rs` for the
+/// artificial and laminar viscosity models, [`fluid_forces_scalar`] for the SPS closure.
+pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
+    if VISC == VISC_LAMINAR_SPS {
+        fluid_forces_scalar::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho)
+    } else {
+        super::batched::fluid_forces_batched::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho)
+    }
+}
+
+/// Continuity (and momentum) for fluid particles, one pair at a time: writes `acc` and `drho` for the fluid range
 /// (both slices start at the first fluid particle) and returns the time-step limits.
 ///
 /// Momentum (Monaghan 1992): `dv_a/dt = -sum_b m (P_a/rho_a^2 + P_b/rho_b^2 + Pi_ab) grad_a W_ab + g`
@@ -102,7 +119,7 @@ impl StepLimits {
 /// `rho^H_ba = rho0 ((1 + rho0 g z_ab / B)^(1/gamma) - 1)` is removed for Fourtakas et al. 2019,
 /// as DualSPHysics' DDT2 does).
 #[allow(clippy::too_many_arguments)]
-pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -201,7 +218,7 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// `coefsound >= 10`, so the binomial series to fourth order is exact to ~1e-10 relative (far
 /// below the density noise it filters) and avoids a `powf` per pair.
 #[inline(always)]
-fn hydrostatic_density_difference(c: &Constants, z_ab: Real) -> Real {
+pub(crate) fn hydrostatic_density_difference(c: &Constants, z_ab: Real) -> Real {
     let x = c.fourtakas_gz * z_ab;
     let [a1, a2, a3, a4] = c.fourtakas_series;
     c.rho0 * x * (a1 + x * (a2 + x * (a3 + x * a4)))

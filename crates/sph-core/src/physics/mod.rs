@@ -2,6 +2,7 @@
 //! one viscosity model (DESIGN.md section 2). Options are compile-time constants of the force
 //! loop, so a term that is off costs nothing in the hot loop.
 
+pub mod batched;
 pub mod eos;
 pub mod forces;
 

@@ -1,0 +1,401 @@
+//! The fluid force loop in batches: vectorisable form of [`super::forces::fluid_forces_scalar`].
+//!
+//! Per fluid particle `a`, the neighbours of each group are collected in the grid's order into a
+//! small stack batch (index, `r_ab`, `r_ab^2`), their fields are gathered into arrays, the pair
+//! terms are computed element-wise over the batch (a loop without calls or branches, which the
+//! compiler turns into SIMD: 4 pairs per instruction with AVX2), and the terms are summed into
+//! `LANES` partial sums (pair `k` into lane `k % LANES`), added up in a fixed order at the end.
+//! The batch boundaries and the lane of every pair depend only on the particle data, so the sums
+//! are the same for any thread count; they differ from the scalar loop's in the last bits only
+//! (another summation order).
+//!
+//! A batch is padded to a whole number of lanes with dummy pairs whose kernel gradient is masked
+//! to zero (the particle itself, placed at the support radius so every term stays finite).
+//!
+//! On x86-64 the per-particle function is compiled a second time with AVX2 enabled and chosen at
+//! run time (`is_x86_feature_detected!`), so one binary runs everywhere and uses the wide units
+//! where they exist. Both variants do the same operations in the same order (Rust never fuses
+//! a multiply and an add on its own), so they give the same bits.
+
+use rayon::prelude::*;
+
+use super::eos::sound_speed;
+use super::forces::{hydrostatic_density_difference, Fields, StepLimits};
+use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
+use crate::kernel::Kernel;
+use crate::math::{Dim, Real, Vector};
+use crate::neighbours::{CellGrid, StencilRows, GROUPS, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::particles::KIND_EXCLUDED;
+
+/// Pairs per batch: large enough to amortise the loop set-up, small enough for L1.
+const BATCH: usize = 64;
+/// Partial sums per particle (the SIMD width in f64 of AVX2).
+const LANES: usize = 4;
+
+/// Per-chunk working arrays: the neighbours collected for one particle and one group, not yet
+/// summed, their gathered fields and their pair terms. Created once per chunk of particles
+/// (on the stack); only the first `n` (padded) entries are ever read.
+struct Scratch {
+    n: usize,
+    idx: [u32; BATCH],
+    /// `r_ab` by component (x, y, z; z unused in 2D).
+    r: [[Real; BATCH]; 3],
+    r2: [Real; BATCH],
+    mask: [Real; BATCH],
+    vb: [[Real; BATCH]; 3],
+    rhob: [Real; BATCH],
+    p_rho2b: [Real; BATCH],
+    cb: [Real; BATCH],
+    out_acc: [[Real; BATCH]; 3],
+    out_drho: [Real; BATCH],
+    out_diff: [Real; BATCH],
+    out_visc: [Real; BATCH],
+    rows: StencilRows,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        let z = [0.0; BATCH];
+        Self {
+            n: 0,
+            idx: [0; BATCH],
+            r: [z; 3],
+            r2: z,
+            mask: z,
+            vb: [z; 3],
+            rhob: z,
+            p_rho2b: z,
+            cb: z,
+            out_acc: [z; 3],
+            out_drho: z,
+            out_diff: z,
+            out_visc: z,
+            rows: StencilRows::default(),
+        }
+    }
+}
+
+/// The fields of particle `a` that every pair uses.
+#[derive(Clone, Copy)]
+struct Own {
+    slot: usize,
+    vel: [Real; 3],
+    rho: Real,
+    p_rho2: Real,
+    sound_speed: Real,
+}
+
+/// Partial sums of particle `a`, one per lane.
+#[derive(Default)]
+struct Sums {
+    acc: [[Real; LANES]; 3],
+    drho: [Real; LANES],
+    diff: [Real; LANES],
+    /// Largest `|h v_ab.r_ab / (r_ab^2 + eta^2)|`.
+    visc: [Real; LANES],
+}
+
+/// Sums the pair terms of the collected pairs into `sums` and empties the batch. `FLUID`: the
+/// neighbours are fluid particles (density diffusion acts between fluid particles only).
+#[inline(always)]
+fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: bool>(
+    c: &Constants,
+    kernel: &K,
+    f: &Fields<'_, D>,
+    own: &Own,
+    s: &mut Scratch,
+    sums: &mut Sums,
+) {
+    let n = s.n;
+    if n == 0 {
+        return;
+    }
+    let n_pad = n.div_ceil(LANES) * LANES;
+    // Pairs at r = 0 (the particle itself, or a coincident one) carry no force: masked, and
+    // moved to the support radius so that no term divides by zero.
+    for k in 0..n {
+        let at_zero = s.r2[k] == 0.0;
+        s.mask[k] = if at_zero { 0.0 } else { 1.0 };
+        s.r[0][k] = if at_zero { c.support } else { s.r[0][k] };
+        s.r2[k] = if at_zero { c.support * c.support } else { s.r2[k] };
+    }
+    for k in n..n_pad {
+        s.idx[k] = own.slot as u32;
+        s.r[0][k] = c.support;
+        s.r[1][k] = 0.0;
+        s.r[2][k] = 0.0;
+        s.r2[k] = c.support * c.support;
+        s.mask[k] = 0.0;
+    }
+    // Gather: the only indexed loads. Sound speed here, where a non-default gamma's powf does
+    // not keep the arithmetic loop from vectorising.
+    for k in 0..n_pad {
+        let b = s.idx[k] as usize;
+        let v = f.vel[b];
+        for d in 0..D::DIM {
+            s.vb[d][k] = v.get(d);
+        }
+        s.rhob[k] = f.rho[b];
+        s.p_rho2b[k] = f.p_rho2[b];
+        if VISC == VISC_ARTIFICIAL {
+            s.cb[k] = sound_speed(c, s.rhob[k]);
+        }
+    }
+
+    // Element-wise pair terms (the comments of fluid_forces_scalar explain each formula).
+    let three = D::DIM == 3;
+    for k in 0..n_pad {
+        let (rx, ry) = (s.r[0][k], s.r[1][k]);
+        let rz = if three { s.r[2][k] } else { 0.0 };
+        let r2 = s.r2[k];
+        let rhob = s.rhob[k];
+        let dist = r2.sqrt();
+        let r2e = r2 + c.eta2;
+        let sum_rho = own.rho + rhob;
+        let rr = if K::NEEDS_INV_R { dist } else { 1.0 };
+        let inv_all = 1.0 / (rr * r2e * rhob * sum_rho);
+        let inv_r2_eta2 = rr * rhob * sum_rho * inv_all;
+        let inv_sum_rho = rr * r2e * rhob * inv_all;
+        let fk = if K::NEEDS_INV_R {
+            kernel.grad_factor_inv_r(dist, r2e * rhob * sum_rho * inv_all)
+        } else {
+            kernel.grad_factor(dist)
+        } * s.mask[k];
+        let (gx, gy, gz) = (rx * fk, ry * fk, rz * fk);
+        let (vx, vy) = (own.vel[0] - s.vb[0][k], own.vel[1] - s.vb[1][k]);
+        let vz = if three { own.vel[2] - s.vb[2][k] } else { 0.0 };
+        s.out_drho[k] = vx * gx + vy * gy + vz * gz;
+        let vr = vx * rx + vy * ry + vz * rz;
+        s.out_visc[k] = (c.h * vr * inv_r2_eta2).abs();
+        let mut p_term = own.p_rho2 + s.p_rho2b[k];
+        if VISC == VISC_ARTIFICIAL {
+            let cbar_rhobar = (own.sound_speed + s.cb[k]) * inv_sum_rho;
+            p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
+        }
+        let (mut ax, mut ay, mut az) = (-gx * p_term, -gy * p_term, -gz * p_term);
+        if VISC != VISC_ARTIFICIAL {
+            let lam = 4.0 * c.nu * (rx * gx + ry * gy + rz * gz) * inv_r2_eta2 * inv_sum_rho;
+            ax += vx * lam;
+            ay += vy * lam;
+            az += vz * lam;
+        }
+        s.out_acc[0][k] = ax;
+        s.out_acc[1][k] = ay;
+        s.out_acc[2][k] = az;
+        if DIFF != DIFF_NONE && FLUID {
+            let mut drho_ba = rhob - own.rho;
+            if DIFF == DIFF_FOURTAKAS {
+                drho_ba -= hydrostatic_density_difference(c, if three { rz } else { ry });
+            }
+            let inv_rhob = rr * r2e * sum_rho * inv_all;
+            s.out_diff[k] = 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
+        }
+    }
+
+    // Lane sums: pair k goes to lane k % LANES.
+    for k0 in (0..n_pad).step_by(LANES) {
+        for l in 0..LANES {
+            let k = k0 + l;
+            for d in 0..D::DIM {
+                sums.acc[d][l] += s.out_acc[d][k];
+            }
+            sums.drho[l] += s.out_drho[k];
+            if DIFF != DIFF_NONE && FLUID {
+                sums.diff[l] += s.out_diff[k];
+            }
+            sums.visc[l] = sums.visc[l].max(s.out_visc[k]);
+        }
+    }
+    s.n = 0;
+}
+
+/// `((s0 + s1) + (s2 + s3))`: the fixed order in which lanes are added.
+#[inline(always)]
+fn lane_sum(s: &[Real; LANES]) -> Real {
+    (s[0] + s[1]) + (s[2] + s[3])
+}
+
+/// Collects the neighbours of `own` in group `G` and sums their terms. Plain loops, no
+/// closures: a closure would be compiled without the caller's target features.
+#[inline(always)]
+fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const G: usize>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: &Fields<'_, D>,
+    own: &Own,
+    s: &mut Scratch,
+    sums: &mut Sums,
+) {
+    let support2 = c.support * c.support;
+    let pa = f.pos[own.slot];
+    let fluid = G == GROUP_FLUID;
+    for row in 0..s.rows.n {
+        let (begin, end) = grid.row_slots(G, &s.rows, row);
+        let (mut j, end) = (begin as usize, end as usize);
+        // Pieces that fit the batch, so the scan loop itself never flushes (no call in it: its
+        // values stay in registers). The particle itself (r = 0) is let through here and
+        // masked in `sum_batch`, one test fewer per candidate.
+        // Measured and dropped (docs/benchmarks.md): testing the candidates four at a time with
+        // a bit mask, and a separate vectorised distance pass per row; both slower than this
+        // branch, which the particle lattice makes predictable.
+        while j < end {
+            if s.n == BATCH {
+                if fluid {
+                    sum_batch::<D, K, VISC, DIFF, true>(c, kernel, f, own, s, sums);
+                } else {
+                    sum_batch::<D, K, VISC, DIFF, false>(c, kernel, f, own, s, sums);
+                }
+            }
+            let m = (end - j).min(BATCH - s.n);
+            let mut k = s.n;
+            for (l, &pb) in f.pos[j..j + m].iter().enumerate() {
+                let r = pa - pb;
+                let r2 = r.length_squared();
+                if r2 < support2 {
+                    s.idx[k] = (j + l) as u32;
+                    for d in 0..D::DIM {
+                        s.r[d][k] = r.get(d);
+                    }
+                    s.r2[k] = r2;
+                    k += 1;
+                }
+            }
+            s.n = k;
+            j += m;
+        }
+    }
+    if fluid {
+        sum_batch::<D, K, VISC, DIFF, true>(c, kernel, f, own, s, sums);
+    } else {
+        sum_batch::<D, K, VISC, DIFF, false>(c, kernel, f, own, s, sums);
+    }
+}
+
+/// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
+#[inline(always)]
+fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: &Fields<'_, D>,
+    a: usize,
+    s: &mut Scratch,
+) -> (D::V, Real, StepLimits) {
+    let va = f.vel[a];
+    let mut vel = [0.0; 3];
+    for (d, v) in vel.iter_mut().enumerate().take(D::DIM) {
+        *v = va.get(d);
+    }
+    let rho = f.rho[a];
+    let own = Own { slot: a, vel, rho, p_rho2: f.p_rho2[a], sound_speed: sound_speed(c, rho) };
+    let mut sums = Sums::default();
+    grid.stencil_rows(f.pos[a], &mut s.rows);
+    debug_assert_eq!(GROUPS, 3);
+    gather_group::<D, K, VISC, DIFF, GROUP_FIXED>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, GROUP_MOVING>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, GROUP_FLUID>(c, kernel, grid, f, &own, s, &mut sums);
+
+    let mut acc = D::V::ZERO;
+    for d in 0..D::DIM {
+        acc.set(d, lane_sum(&sums.acc[d]) * c.mass);
+    }
+    let vertical = D::DIM - 1;
+    acc.set(vertical, acc.get(vertical) - c.gravity);
+    let drho = c.mass * (lane_sum(&sums.drho) + c.delta_h_c0 * lane_sum(&sums.diff));
+    let max_visc = sums.visc.iter().fold(0.0 as Real, |m, &v| m.max(v));
+    let limits =
+        StepLimits { max_acc: acc.length(), min_dt_cv: c.h / (own.sound_speed + max_visc), acc_slot: a, cv_slot: a };
+    (acc, drho, limits)
+}
+
+/// Forces on the fluid particles `first..first + acc.len()` (indices into the fluid range).
+#[inline(always)]
+fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: &Fields<'_, D>,
+    first: usize,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
+    let mut s = Scratch::new();
+    let mut limits = StepLimits::NONE;
+    for (i, (acc_a, drho_a)) in acc.iter_mut().zip(drho.iter_mut()).enumerate() {
+        let a = f.fluid_start + first + i;
+        if f.kind[a] == KIND_EXCLUDED {
+            *acc_a = D::V::ZERO;
+            *drho_a = 0.0;
+            continue;
+        }
+        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF>(c, kernel, grid, f, a, &mut s);
+        *acc_a = acc_v;
+        *drho_a = drho_v;
+        limits = limits.merge(lim);
+    }
+    limits
+}
+
+/// [`chunk_forces`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2 (checked by [`fluid_forces_batched`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: &Fields<'_, D>,
+    first: usize,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
+    chunk_forces::<D, K, VISC, DIFF>(c, kernel, grid, f, first, acc, drho)
+}
+
+/// Whether the batched loop runs its AVX2 variant on this CPU.
+pub fn uses_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Fluid particles per parallel task (one scratch each).
+const CHUNK: usize = 256;
+
+/// Batched [`super::forces::fluid_forces_scalar`] for the artificial and laminar viscosity
+/// models (the SPS closure stays on the scalar loop). Same contract: writes `acc` and `drho` of
+/// the fluid range and returns the step limits.
+pub fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
+    assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
+    let avx2 = uses_avx2();
+    acc.par_chunks_mut(CHUNK)
+        .zip(drho.par_chunks_mut(CHUNK))
+        .enumerate()
+        .map(|(ci, (acc_c, drho_c))| {
+            let first = ci * CHUNK;
+            #[cfg(target_arch = "x86_64")]
+            if avx2 {
+                // SAFETY: AVX2 support was detected above.
+                return unsafe { chunk_forces_avx2::<D, K, VISC, DIFF>(c, kernel, grid, &f, first, acc_c, drho_c) };
+            }
+            let _ = avx2;
+            chunk_forces::<D, K, VISC, DIFF>(c, kernel, grid, &f, first, acc_c, drho_c)
+        })
+        .reduce(|| StepLimits::NONE, StepLimits::merge)
+}
