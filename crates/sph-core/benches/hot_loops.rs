@@ -35,15 +35,16 @@ fn neighbour_search<D: Dim>(c: &mut Criterion, name: &str, scene: Scene) {
         lo = lo.min(x);
         hi = hi.max(x);
     }
-    let mut grid = CellGrid::<D>::new(lo, hi, support, 2, n);
+    let mut grid = CellGrid::<D>::new(lo, hi, support, 2);
+    let mut keys = vec![0u32; n];
     let mut perm = vec![0u32; n];
     let mut group = c.benchmark_group(format!("neighbours/{name}"));
     group.throughput(Throughput::Elements(n as u64));
     group.bench_function(BenchmarkId::new("sort", n), |b| {
-        b.iter(|| grid.sort_group(GROUP_FLUID, 0..n, &pos, &mut perm));
+        b.iter(|| grid.sort_group(GROUP_FLUID, 0..n, &pos, &mut perm, &mut keys));
     });
     let sorted: Vec<D::V> = perm.iter().map(|&i| pos[i as usize]).collect();
-    grid.sort_group(GROUP_FLUID, 0..n, &sorted, &mut perm);
+    grid.sort_group(GROUP_FLUID, 0..n, &sorted, &mut perm, &mut keys);
     group.bench_function(BenchmarkId::new("count_pairs", n), |b| {
         b.iter(|| {
             use rayon::prelude::*;

@@ -45,15 +45,14 @@ pub struct CellGrid<D: Dim> {
     dims: [usize; 3],
     n_cells: usize,
     starts: [Vec<u32>; GROUPS],
-    /// Scratch: cell of each particle, and the counting-sort cursor per cell.
-    keys: Vec<u32>,
+    /// Scratch: the counting-sort cursor per cell.
     cursor: Vec<u32>,
 }
 
 impl<D: Dim> CellGrid<D> {
-    /// A grid covering `[lo, hi]` for `n` particles, finding all pairs closer than `support` with
-    /// cells of side `support / reach`.
-    pub fn new(lo: D::V, hi: D::V, support: Real, reach: usize, n: usize) -> Self {
+    /// A grid covering `[lo, hi]`, finding all pairs closer than `support` with cells of side
+    /// `support / reach`.
+    pub fn new(lo: D::V, hi: D::V, support: Real, reach: usize) -> Self {
         let reach = reach.clamp(1, MAX_REACH);
         let cell_size = support / reach as Real;
         let mut dims = [1usize; 3];
@@ -70,7 +69,6 @@ impl<D: Dim> CellGrid<D> {
             dims,
             n_cells,
             starts: [empty(), empty(), empty()],
-            keys: vec![0; n],
             cursor: vec![0; n_cells],
         }
     }
@@ -81,7 +79,7 @@ impl<D: Dim> CellGrid<D> {
 
     /// Bytes held by the grid.
     pub fn memory_bytes(&self) -> usize {
-        (self.starts.iter().map(|s| s.capacity()).sum::<usize>() + self.keys.capacity() + self.cursor.capacity())
+        (self.starts.iter().map(|s| s.capacity()).sum::<usize>() + self.cursor.capacity())
             * std::mem::size_of::<u32>()
     }
 
@@ -112,10 +110,11 @@ impl<D: Dim> CellGrid<D> {
     /// Sorts group `g`, occupying `range` of the particle arrays, by cell. Writes into `perm`
     /// (indexed by the new slot minus `range.start`) the old absolute index of each particle, and
     /// updates the group's cell starts. Stable: particles in one cell keep their relative order.
-    pub fn sort_group(&mut self, g: usize, range: std::ops::Range<usize>, pos: &[D::V], perm: &mut [u32]) {
+    /// `keys` (at least `range.len()` long) is scratch for the cell of each particle: the
+    /// caller lends it (the solver, from its gather buffer) so the grid holds no per-particle array.
+    pub fn sort_group(&mut self, g: usize, range: std::ops::Range<usize>, pos: &[D::V], perm: &mut [u32], keys: &mut [u32]) {
         use rayon::prelude::*;
-        let mut all_keys = std::mem::take(&mut self.keys);
-        let keys = &mut all_keys[range.clone()];
+        let keys = &mut keys[..range.len()];
         let this = &*self;
         keys.par_iter_mut().zip(pos[range.clone()].par_iter()).for_each(|(k, &p)| *k = this.cell_of(p) as u32);
 
@@ -137,7 +136,6 @@ impl<D: Dim> CellGrid<D> {
             self.cursor[k as usize] += 1;
             perm[slot as usize - range.start] = (range.start + i) as u32;
         }
-        self.keys = all_keys;
     }
 
     /// The stencil rows around `p`, trimmed to the cells that reach within the support of `p`:
@@ -242,9 +240,9 @@ mod tests {
 
     fn check_reach<D: Dim>(points: &[D::V], lo: D::V, hi: D::V, radius: Real, reach: usize) {
         let n = points.len();
-        let mut grid = CellGrid::<D>::new(lo, hi, radius, reach, n);
+        let mut grid = CellGrid::<D>::new(lo, hi, radius, reach);
         let mut perm = vec![0u32; n];
-        grid.sort_group(GROUP_FLUID, 0..n, points, &mut perm);
+        grid.sort_group(GROUP_FLUID, 0..n, points, &mut perm, &mut vec![0; n]);
         let sorted: Vec<D::V> = perm.iter().map(|&i| points[i as usize]).collect();
         // empty groups: starts all zero, so iteration over them visits nothing
         for a in 0..n {

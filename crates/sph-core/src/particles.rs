@@ -18,11 +18,9 @@ pub const KIND_EXCLUDED: u8 = 3;
 pub struct Particles<D: Dim> {
     pub pos: Vec<D::V>,
     pub vel: Vec<D::V>,
+    /// Density; pressure is not stored (16 bytes per particle saved with `P / rho^2`): the
+    /// force loops compute it from `rho` where they read it.
     pub rho: Vec<Real>,
-    /// `P / rho^2`, the momentum equation's per-particle factor, refreshed from `rho` before
-    /// every force evaluation. (Pressure itself is not stored: 8 bytes per particle saved; it
-    /// is computed from `rho` where it is read.)
-    pub p_rho2: Vec<Real>,
     /// Creation order of the particle in each storage slot.
     pub id: Vec<u32>,
     /// Kind of each slot (fluid slots turn `KIND_EXCLUDED` when their particle leaves the domain).
@@ -54,7 +52,7 @@ impl<D: Dim> Particles<D> {
         use std::mem::size_of;
         let v = size_of::<D::V>();
         (self.pos.capacity() + self.vel.capacity() + self.acc.capacity()) * v
-            + (self.rho.capacity() + self.p_rho2.capacity() + self.drho.capacity()) * size_of::<Real>()
+            + (self.rho.capacity() + self.drho.capacity()) * size_of::<Real>()
             + self.id.capacity() * size_of::<u32>()
             + self.kind.capacity()
     }

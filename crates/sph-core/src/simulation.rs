@@ -212,7 +212,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let p = Particles::<D> {
             pos,
             vel: vec![D::V::ZERO; n],
-            p_rho2: vec![0.0; n],
             rho,
             id: (0..n as u32).collect(),
             kind,
@@ -229,7 +228,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let height = scene.tank.max[up] - scene.tank.min[up];
         hi.set(up, hi.get(up) + height);
         lo = lo.min(hi);
-        let grid = CellGrid::<D>::new(lo, hi, c.support, NEIGHBOUR_REACH, n);
+        let grid = CellGrid::<D>::new(lo, hi, c.support, NEIGHBOUR_REACH);
 
         let history = match scene.integrator {
             Integrator::Symplectic => History::Symplectic {
@@ -276,7 +275,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         solver.sort_group(GROUP_FIXED);
         solver.sort_group(GROUP_MOVING);
         solver.sort_group(GROUP_FLUID);
-        solver.refresh_pressure();
         solver.sample_gauges();
         Ok(solver)
     }
@@ -582,7 +580,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         }
         let s = &mut self.scratch;
         let perm = &mut s.perm[..range.len()];
-        self.grid.sort_group(g, range.clone(), &self.p.pos, perm);
+        // the cell keys live in the gather buffer: they are dead before `permute` reuses it
+        let keys = bytemuck::cast_slice_mut::<u64, u32>(&mut s.gather);
+        self.grid.sort_group(g, range.clone(), &self.p.pos, perm, keys);
         let perm = &s.perm[..range.len()];
         permute_vectors(&mut self.p.pos, range.clone(), perm, &mut s.gather);
         permute_vectors(&mut self.p.vel, range.clone(), perm, &mut s.gather);
@@ -615,11 +615,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         &self.c
     }
 
-    /// Sorts the moving groups, refreshes pressures and computes accelerations and density rates.
+    /// Sorts the moving groups and computes accelerations and density rates.
     pub fn compute_forces(&mut self) -> StepLimits {
         self.sort_group(GROUP_MOVING);
         self.sort_group(GROUP_FLUID);
-        self.refresh_pressure();
         let c = self.c;
         let fs = self.p.fluid_start();
         if VISC == VISC_LAMINAR_SPS {
@@ -628,7 +627,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 vel: &self.p.vel,
                 rho: &self.p.rho,
                 kind: &self.p.kind,
-                p_rho2: &self.p.p_rho2,
                 tau: &[],
                 fluid_start: fs,
             };
@@ -639,20 +637,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             vel: &self.p.vel,
             rho: &self.p.rho,
             kind: &self.p.kind,
-            p_rho2: &self.p.p_rho2,
             tau: &self.tau,
             fluid_start: fs,
         };
         let (drho_walls, drho_fluid) = self.p.drho.split_at_mut(fs);
         boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls);
         fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut self.p.acc, drho_fluid)
-    }
-
-    /// Pressure from the equation of state for the current densities and storage order.
-    fn refresh_pressure(&mut self) {
-        let c = self.c;
-        let p = &mut self.p;
-        p.p_rho2.par_iter_mut().zip(p.rho.par_iter()).for_each(|(q, &r)| *q = pressure(&c, r) / (r * r));
     }
 
     /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).
@@ -810,8 +800,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.time += self.dt;
         self.steps += 1;
         self.move_boundaries(self.time);
-        // Pressures readable between steps match the densities.
-        self.refresh_pressure();
         self.check()?;
         self.exclude_escaped()?;
         self.check_energy()?;
@@ -1026,7 +1014,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.sort_group(GROUP_FIXED);
         self.sort_group(GROUP_MOVING);
         self.sort_group(GROUP_FLUID);
-        self.refresh_pressure();
         Ok(())
     }
 }
@@ -1052,7 +1039,6 @@ mod batched_loop_tests {
             vel: &s.p.vel,
             rho: &s.p.rho,
             kind: &s.p.kind,
-            p_rho2: &s.p.p_rho2,
             tau: &[],
             fluid_start: s.p.fluid_start(),
         };

@@ -19,7 +19,7 @@
 
 use rayon::prelude::*;
 
-use super::eos::sound_speed;
+use super::eos::{pressure, sound_speed};
 use super::forces::{hydrostatic_density_difference, Fields, StepLimits};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
@@ -44,7 +44,8 @@ struct Scratch {
     mask: [Real; BATCH],
     vb: [[Real; BATCH]; 3],
     rhob: [Real; BATCH],
-    p_rho2b: [Real; BATCH],
+    /// Pressure of each neighbour.
+    pb: [Real; BATCH],
     cb: [Real; BATCH],
     out_acc: [[Real; BATCH]; 3],
     out_drho: [Real; BATCH],
@@ -64,7 +65,7 @@ impl Scratch {
             mask: z,
             vb: [z; 3],
             rhob: z,
-            p_rho2b: z,
+            pb: z,
             cb: z,
             out_acc: [z; 3],
             out_drho: z,
@@ -127,8 +128,8 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
         s.r2[k] = c.support * c.support;
         s.mask[k] = 0.0;
     }
-    // Gather: the only indexed loads. Sound speed here, where a non-default gamma's powf does
-    // not keep the arithmetic loop from vectorising.
+    // Gather: the only indexed loads. Pressure and sound speed here, where a non-default
+    // gamma's powf does not keep the arithmetic loop from vectorising.
     for k in 0..n_pad {
         let b = s.idx[k] as usize;
         let v = f.vel[b];
@@ -136,7 +137,7 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
             s.vb[d][k] = v.get(d);
         }
         s.rhob[k] = f.rho[b];
-        s.p_rho2b[k] = f.p_rho2[b];
+        s.pb[k] = pressure(c, s.rhob[k]);
         if VISC == VISC_ARTIFICIAL {
             s.cb[k] = sound_speed(c, s.rhob[k]);
         }
@@ -167,7 +168,8 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
         s.out_drho[k] = vx * gx + vy * gy + vz * gz;
         let vr = vx * rx + vy * ry + vz * rz;
         s.out_visc[k] = (c.h * vr * inv_r2_eta2).abs();
-        let mut p_term = own.p_rho2 + s.p_rho2b[k];
+        let inv_rhob = rr * r2e * sum_rho * inv_all;
+        let mut p_term = own.p_rho2 + s.pb[k] * inv_rhob * inv_rhob;
         if VISC == VISC_ARTIFICIAL {
             let cbar_rhobar = (own.sound_speed + s.cb[k]) * inv_sum_rho;
             p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
@@ -187,7 +189,6 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
             if DIFF == DIFF_FOURTAKAS {
                 drho_ba -= hydrostatic_density_difference(c, if three { rz } else { ry });
             }
-            let inv_rhob = rr * r2e * sum_rho * inv_all;
             s.out_diff[k] = 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
         }
     }
@@ -288,7 +289,7 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
         *v = va.get(d);
     }
     let rho = f.rho[a];
-    let own = Own { slot: a, vel, rho, p_rho2: f.p_rho2[a], sound_speed: sound_speed(c, rho) };
+    let own = Own { slot: a, vel, rho, p_rho2: pressure(c, rho) / (rho * rho), sound_speed: sound_speed(c, rho) };
     let mut sums = Sums::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);

@@ -6,7 +6,7 @@
 
 use rayon::prelude::*;
 
-use super::eos::sound_speed;
+use super::eos::{pressure, sound_speed};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -46,8 +46,6 @@ pub struct Fields<'a, D: Dim> {
     pub rho: &'a [Real],
     /// Particle kinds (excluded fluid particles are skipped).
     pub kind: &'a [u8],
-    /// `P / rho^2` per particle.
-    pub p_rho2: &'a [Real],
     /// SPS stress `tau / rho^2` per fluid particle (indexed from the first fluid particle); empty
     /// unless the SPS closure is on.
     pub tau: &'a [D::Sym],
@@ -141,7 +139,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                 return StepLimits::NONE;
             }
             let (pa, va, rhoa) = (f.pos[a], f.vel[a], f.rho[a]);
-            let pa_rho2 = f.p_rho2[a];
+            let pa_rho2 = pressure(c, rhoa) / (rhoa * rhoa);
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
             let mut sum_acc = D::V::ZERO;
@@ -173,7 +171,9 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     let vr = vab.dot(r);
                     let visc_rate = c.h * vr * inv_r2_eta2;
                     max_visc = max_visc.max(visc_rate.abs());
-                    let mut p_term = pa_rho2 + f.p_rho2[b];
+                    // P_b / rho_b^2 from the pair's reciprocal of rho_b (pressure is not stored)
+                    let inv_rhob = rr * r2e * sum_rho * inv_all;
+                    let mut p_term = pa_rho2 + pressure(c, rhob) * inv_rhob * inv_rhob;
                     if VISC == VISC_ARTIFICIAL {
                         // Pi_ab acts on approaching pairs only (v_ab.r_ab < 0); min() instead of
                         // a branch: the sign is unpredictable, and for v_ab.r_ab >= 0 the term
@@ -198,7 +198,6 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                         }
                         debug_assert!(DIFF == DIFF_MOLTENI || DIFF == DIFF_FOURTAKAS);
                         // r_ba . grad_a W_ab = -r_ab . grad_a W_ab = -r2 F > 0
-                        let inv_rhob = rr * r2e * sum_rho * inv_all;
                         sum_diff += 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
                     }
                 });
