@@ -106,3 +106,40 @@ def test_flume_accuracy_example_writes_tables_and_figures(tmp_path: Path) -> Non
     data = json.loads((tmp_path / "out" / "results.json").read_text())
     assert data["flume2d"][0]["H_3L"] == pytest.approx(-0.03)
     assert mod.main([str(tmp_path / "missing.json"), "--out", str(tmp_path / "x")]) == 2
+
+
+def test_secondorder_wave_is_the_documented_one() -> None:
+    """SECOND_ORDER_WAVE's docstring: kd 0.69, Madsen 2.0 mm on a 66 mm stroke, bound harmonic
+    5.4 mm below H/8, beat length 1.86 L; flume2d's H = 0.1 m wave is 4.2 % longer by Stokes 3."""
+    from watersim.validation.cases import FLUME2D_HEIGHT, SECOND_ORDER_WAVE, secondorder_scene
+
+    first, second = secondorder_scene(0.03, 1), secondorder_scene(0.03, 2)
+    assert first.law.second_order_amplitude == 0.0
+    assert second.law.second_order_amplitude == pytest.approx(0.0020, abs=5e-5)
+    assert second.law.stroke == pytest.approx(0.066, abs=5e-4)
+    d, period, h = (SECOND_ORDER_WAVE[k] for k in ("depth", "period", "height"))
+    k = float(wt.wavenumber(period, d))
+    assert k * d == pytest.approx(0.69, abs=0.005)
+    bound = float(wt.stokes2_second_harmonic_amplitude(h, k, d))
+    assert bound == pytest.approx(0.0054, abs=5e-5) and bound < h / 8
+    k2 = float(wt.wavenumber_from_omega(4 * math.pi / period, d))
+    assert 2 * math.pi / (k2 - 2 * k) * k / (2 * math.pi) == pytest.approx(1.86, abs=0.005)
+    assert metrics.stokes3_wavelength(1.2, 0.3, FLUME2D_HEIGHT) / float(
+        wt.wavelength(1.2, 0.3)) == pytest.approx(1.042, abs=0.0005)
+
+
+def test_numerics_study_table_and_bad_input(capsys: pytest.CaptureFixture[str]) -> None:
+    spec = importlib.util.spec_from_file_location("flume_numerics_study",
+                                                  EXAMPLES / "flume_numerics_study.py")
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    committed = EXAMPLES.parent / "docs" / "wave-flume" / "numerics-study.json"
+    assert mod.main(["--table", "--json", str(committed)]) == 0
+    out = capsys.readouterr().out
+    assert "| base | flume defaults |" in out and "| alpha0 | alpha 0 |" in out
+    assert mod.main(["nonsense"]) == 2 and "unknown variant" in capsys.readouterr().err
+    assert mod.main(["--table"]) == 2
+    scene, wl = mod.scene(**mod.VARIANTS["verlet_alpha0.003"])
+    assert scene.integrator == "verlet" and scene.alpha == 0.003
+    assert scene.flume.length == pytest.approx(3.25 * wl, abs=1e-3)
