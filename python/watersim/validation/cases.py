@@ -545,16 +545,17 @@ def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[st
 
 
 def _mean_level_drift(sim: FlumeSimulation, scene: FlumeScene, names: list[str]
-                      ) -> dict[str, dict[str, float | None]]:
+                      ) -> dict[str, dict[str, Any]]:
     """Per named gauge: the mean water level [m] over its steady part (the window of
     :func:`watersim.flume.analyse_flume`), its drift over that part (``slope`` [m/s],
     ``change`` [m], :func:`metrics.mean_level_drift`), and the still-water level just before
     the ramp's first wave arrives (``level_before`` [m], mean of the last period before
-    arrival: the settling of the fluid on the floor, not the wave)."""
+    arrival: the settling of the fluid on the floor, not the wave), and ``period_means`` [m]:
+    the mean level of each whole period of the record from t = 0."""
     t, eta, _ = sim.gauges.uniform()
     period = scene.law.period
     assert period is not None
-    out: dict[str, dict[str, float | None]] = {}
+    out: dict[str, dict[str, Any]] = {}
     for j, name in enumerate(sim.gauges.names):
         if name not in names:
             continue
@@ -562,7 +563,7 @@ def _mean_level_drift(sim: FlumeSimulation, scene: FlumeScene, names: list[str]
         arrival = scene.arrival_time(x)
         t0 = scene.law.ramp_duration + arrival + period
         sel = t >= t0
-        entry: dict[str, float | None] = {"x": x, "mean": None, "slope": None, "change": None,
+        entry: dict[str, Any] = {"x": x, "mean": None, "slope": None, "change": None,
                                           "level_before": None}
         if np.count_nonzero(sel) >= 4:
             entry["mean"] = float(np.mean(eta[sel, j]))
@@ -574,6 +575,10 @@ def _mean_level_drift(sim: FlumeSimulation, scene: FlumeScene, names: list[str]
         before = (t >= arrival - period) & (t < arrival)
         if arrival > period and np.count_nonzero(before) >= 2:
             entry["level_before"] = float(np.mean(eta[before, j]))
+        # the whole record's per-period means from t = 0 (still water, wave front, steady part)
+        per = max(1, round(period / float(t[1] - t[0]))) if t.size > 1 else 1
+        n = t.size // per
+        entry["period_means"] = [float(v) for v in eta[: n * per, j].reshape(n, per).mean(axis=1)]
         out[name] = entry
     return out
 

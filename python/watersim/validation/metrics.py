@@ -468,4 +468,4 @@ def mean_level_drift(
     means = ee[: n * per].reshape(n, per).mean(axis=1)
     centres = tt[: n * per].reshape(n, per).mean(axis=1)
     slope = float(np.polyfit(centres, means, 1)[0])
-    return slope, slope * n * per * dt
+    return slope, float(slope * n * per * dt)
