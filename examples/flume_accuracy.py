@@ -10,7 +10,8 @@ and writes into ``--out``:
   with the +-5 % band of the issue;
 - ``secondorder2d.png``: second-harmonic amplitude along the flume over the Stokes bound
   amplitude of each gauge's own first harmonic, first- and second-order piston;
-- ``results.md``: the tables (heights at 1, 2, 3 L, loss per wavelength, wavelength against
+- ``results.md``: the tables (zero-crossing heights and first-harmonic heights 2 a1 at 1, 2,
+  3 L, loss per wavelength, wavelength against
   linear and Stokes third-order theory, mean-water-level drift; second-harmonic spreads and
   their ratio) with each run's particles, steps, wall and CPU time;
 - ``results.json``: the same numbers.
@@ -75,6 +76,7 @@ def flume2d_rows(records: Sequence[Record]) -> list[dict[str, Any]]:
             "cpu_s": r["cpu_s"], "numerics": d.get("numerics"),
             **{f"H_{n}L": (d[f"H_{n}L"] / target - 1.0 if d.get(f"H_{n}L") and target else None)
                for n in (1, 2, 3)},
+            **{f"H1_{n}L": _first_harmonic_height(d, n) for n in (1, 2, 3)},
             "loss_per_L": d.get("height_loss_per_wavelength"),
             "wavelength_linear": (lw / wl - 1.0) if lw and wl else None,
             "wavelength_stokes3": (lw / l3 - 1.0) if lw and l3 else None,
@@ -83,6 +85,17 @@ def flume2d_rows(records: Sequence[Record]) -> list[dict[str, Any]]:
             "mwl_mean_max_over_H": (max(means, key=abs) / target if means and target else None),
         })
     return rows
+
+
+def _first_harmonic_height(details: Mapping[str, Any], n: int) -> float | None:
+    """2 a1 / H_target - 1 at the gauge n wavelengths from the paddle (None if absent)."""
+    wl, target = details.get("wavelength_linear"), details.get("H_target")
+    if not wl or not target:
+        return None
+    for g in details.get("gauges", []):
+        if abs(g["x"] / wl - n) < 0.01 and g.get("harmonics") and g["harmonics"][0]:
+            return float(2.0 * g["harmonics"][0] / target - 1.0)
+    return None
 
 
 def secondorder_rows(records: Sequence[Record]) -> list[dict[str, Any]]:
@@ -110,14 +123,15 @@ def markdown(f_rows: Sequence[Mapping[str, Any]], s_rows: Sequence[Mapping[str, 
     if f_rows:
         out += ["## flume2d: regular wave H = 0.1 m, T = 1.2 s, d = 0.3 m", "",
                 "| H/dp | dp [m] | particles | steps | wall [s] | cpu [s] | H at 1 L | H at 2 L "
-                "| H at 3 L | loss per L | wavelength vs linear | vs Stokes 3rd | MWL drift / H "
-                "| largest mean level / H |",
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                "| H at 3 L | 2 a1 at 1 L | 2 a1 at 2 L | 2 a1 at 3 L | loss per L "
+                "| wavelength vs linear | vs Stokes 3rd | MWL drift / H | largest mean level / H |",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in f_rows:
             out.append(
                 f"| {r['resolution']:g} | {r['dp']:.4g} | {r['particles']:,} | {r['steps']:,} "
                 f"| {r['wall_s']:.0f} | {r['cpu_s']:.0f} | {_pct(r['H_1L'])} | {_pct(r['H_2L'])} "
-                f"| {_pct(r['H_3L'])} | {_pct(r['loss_per_L'])} | {_pct(r['wavelength_linear'])} "
+                f"| {_pct(r['H_3L'])} | {_pct(r['H1_1L'])} | {_pct(r['H1_2L'])} "
+                f"| {_pct(r['H1_3L'])} | {_pct(r['loss_per_L'])} | {_pct(r['wavelength_linear'])} "
                 f"| {_pct(r['wavelength_stokes3'])} | {_pct(r['mwl_change_max_over_H'], 2)} "
                 f"| {_pct(r['mwl_mean_max_over_H'], 2)} |")
         out.append("")
@@ -160,9 +174,17 @@ def plot(records: Sequence[Record], out: Path) -> list[Path]:
                          if g.get("H_mean") is not None)
             if pts:
                 x, h = zip(*pts, strict=True)
-                ax.plot(x, h, "o-", label=f"H/dp = {r['resolution']:g} (dp = {r['dp']:.3g} m)")
+                line, = ax.plot(x, h, "o-",
+                                label=f"H/dp = {r['resolution']:g} (dp = {r['dp']:.3g} m)")
+                first = sorted((g["x"] / wl, 2.0 * g["harmonics"][0] / target)
+                               for g in d.get("gauges", [])
+                               if g.get("harmonics") and g["harmonics"][0] is not None)
+                if first:
+                    x1, h1 = zip(*first, strict=True)
+                    ax.plot(x1, h1, "x--", color=line.get_color(), lw=0.8,
+                            label=f"first harmonic 2 a1, H/dp = {r['resolution']:g}")
         ax.set_xlabel("distance from the paddle x / L")
-        ax.set_ylabel("zero-crossing wave height H / H_target")
+        ax.set_ylabel("wave height / H_target")
         ax.set_title("flume2d: regular wave H = 0.1 m, T = 1.2 s, d = 0.3 m")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
