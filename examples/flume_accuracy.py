@@ -186,7 +186,7 @@ def plot(records: Sequence[Record], out: Path) -> list[Path]:
         ax.set_xlabel("distance from the paddle x / L")
         ax.set_ylabel("wave height / H_target")
         ax.set_title("flume2d: regular wave H = 0.1 m, T = 1.2 s, d = 0.3 m")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7, loc="lower left")
         ax.grid(alpha=0.3)
         path = out / "flume2d_height.png"
         fig.tight_layout()
