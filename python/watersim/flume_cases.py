@@ -82,8 +82,9 @@ FLUME2D_ALPHA = 0.003
 """Artificial viscosity of the flat-floor regular-wave case flume2d [-]. Its viscous decay of
 the wave height per wavelength is about ``2 nu k^2 L / c_g`` (Lamb 1932, section 348) with
 ``nu = alpha h c0 / 8`` (Monaghan 2005, 2D): with alpha = 0.01 that is 1.8 % per wavelength at
-dp = 0.01 m, using up a 5 % height tolerance within three wavelengths; 0.003 leaves 0.5 %
-(measured at dp = 0.025 m: the 0.01 - 0 difference is 4-7 % per wavelength, as predicted)."""
+dp = 0.01 m, using up a 5 % height tolerance within three wavelengths; 0.003 costs 0.5 %
+(measured at dp = 0.025 m, where the formula gives 4.5 % for 0.01: alpha 0.01 against 0 costs
+6.6 % of the height at 1 L and 3.0 % per wavelength from 1 to 2 L)."""
 
 
 class FlumeCaseError(Exception):
@@ -194,7 +195,7 @@ def case_flume2d(s: _Settings) -> FlumeScene:
     Numerics for a non-breaking wave carried over several wavelengths (docs/wave-flume.md,
     "How far WaterSim carries a wave"): ``alpha = 0.003`` instead of the flume default 0.01,
     whose artificial viscosity (nu = alpha h c0 / 8) alone takes 1.8 % of the height per
-    wavelength at dp = 0.01 m and 4.5 % at 0.025 m (Lamb's viscous decay, measured); and the
+    wavelength at dp = 0.01 m and 4.5 % at 0.025 m (Lamb's viscous decay; measured 3-7 %); and the
     Verlet integrator, one force evaluation per step against two for Symplectic, at the same
     measured decay.
     """
