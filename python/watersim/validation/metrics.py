@@ -24,8 +24,10 @@ __all__ = [
     "front_error_best_shift",
     "harmonic_amplitude_errors",
     "harmonic_spread",
+    "harmonic_spread_local_bound",
     "height_loss_per_wavelength",
     "hydrostatic_pressure_error",
+    "mean_level_drift",
     "relative_phase_error",
     "relative_error",
     "spurious_velocity",
@@ -416,3 +418,54 @@ def relative_phase_error(simulated: npt.ArrayLike, measured: npt.ArrayLike) -> f
     d = np.angle(np.exp(1j * (s - m)))
     mean = np.angle(np.mean(np.exp(1j * d)))
     return float(np.sqrt(np.mean(np.angle(np.exp(1j * (d - mean))) ** 2)))
+
+
+def harmonic_spread_local_bound(
+    a1: Sequence[float], a2: Sequence[float], k: float, depth: float
+) -> float:
+    """``(max - min) / mean`` of ``a2 / a2_bound(a1)`` along the flume [-].
+
+    Like :func:`harmonic_spread`, but each gauge's second-harmonic amplitude ``a2`` [m] is
+    divided by the Stokes bound amplitude of its *own* first harmonic ``a1`` [m]
+    (:func:`watersim.wave_theory.stokes2_second_harmonic_amplitude` with H = 2 a1), so a wave
+    that loses height along the flume (its bound harmonic falls as H^2) shows no spread; only
+    a free second harmonic, beating with the bound one, does.
+    """
+    x1 = np.asarray(a1, dtype=float).ravel()
+    x2 = np.asarray(a2, dtype=float).ravel()
+    if x1.shape != x2.shape:
+        raise ValueError("a1, a2: need the same number of gauges")
+    ok = np.isfinite(x1) & np.isfinite(x2) & (x1 > 0.0)
+    if np.count_nonzero(ok) < 2:
+        raise ValueError("a1, a2: need at least 2 gauges with finite, positive amplitudes")
+    bound = np.asarray(wt.stokes2_second_harmonic_amplitude(2.0 * x1[ok], k, depth))
+    ratio = x2[ok] / bound
+    return float((ratio.max() - ratio.min()) / ratio.mean())
+
+
+def mean_level_drift(
+    eta: npt.ArrayLike, t: npt.ArrayLike, period: float
+) -> tuple[float, float]:
+    """Drift of the mean water level over a regular-wave record: ``(slope, change)``.
+
+    The record (uniform times ``t`` [s], elevation ``eta`` [m]) is cut into whole periods from
+    its start; the mean of each period is the mean water level of that wave (a whole period
+    removes the oscillation exactly for a periodic signal). ``slope`` is the least-squares
+    slope of those means against time [m/s]; ``change`` is the slope times the record's
+    length [m], the rise (positive) or fall of the level over the record. Needs 2+ periods.
+    """
+    ee = np.asarray(eta, dtype=float).ravel()
+    tt = np.asarray(t, dtype=float).ravel()
+    if ee.shape != tt.shape or tt.size < 4:
+        raise ValueError("eta, t: need two arrays of the same length (4+ samples)")
+    if not period > 0.0:
+        raise ValueError(f"period: must be positive, got {period!r}")
+    dt = (tt[-1] - tt[0]) / (tt.size - 1)
+    per = round(period / dt)
+    n = tt.size // per if per > 0 else 0
+    if n < 2:
+        raise ValueError(f"eta: the record holds fewer than 2 periods of {period} s")
+    means = ee[: n * per].reshape(n, per).mean(axis=1)
+    centres = tt[: n * per].reshape(n, per).mean(axis=1)
+    slope = float(np.polyfit(centres, means, 1)[0])
+    return slope, float(slope * n * per * dt)
