@@ -32,7 +32,8 @@ What is built (the core's scene, see ``crates/sph-core/src/scene.rs``):
   the paddle face;
 - water from the paddle to the far wall up to ``depth`` (minus whatever the beach occupies);
 - the beach as a piecewise-linear bed profile (solid below it), a plane beach being the profile
-  ``(toe, 0) -> (x_top, height)`` continued flat at the tank top;
+  ``(toe, 0) -> (x_top, height)`` continued flat at the tank top; or, in 3D, a closed triangle
+  mesh (:class:`MeshBeach`, from an STL file), passed to the core as a mesh obstacle;
 - the paddle: a piston or a flap (hinged at ``hinge_z``), driven by a motion law whose
   coefficients come from :mod:`watersim.wave_theory` (Biesel transfer functions, Madsen's second
   order, spectral synthesis, Goring's solitary wave), or a tabulated displacement;
