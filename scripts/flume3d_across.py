@@ -38,8 +38,8 @@ def write(path: Path, settings: list[str], periods: float) -> None:
         for m in ("particle", "kernel") for x in (x_half, x_one) for f in (0.25, 0.5, 0.75)
     ]
     if "until" not in items:
-        until = setup.law.ramp_duration + setup.arrival_time(wl) + periods * float(setup.period or 0)
-        doc["until"] = round(until, 2)
+        period = float(setup.period or 0.0)
+        doc["until"] = round(setup.law.ramp_duration + setup.arrival_time(wl) + periods * period, 2)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(tomli_w.dumps(doc))
     print(f"wrote {path}: until {doc['until']} s, width {width} m, dp {setup.dp} m")

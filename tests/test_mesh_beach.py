@@ -94,7 +94,8 @@ def test_stl_beach_particles_lie_on_the_mesh_surface(tmp_path: Path, binary: boo
     assert np.min(height(sim.fluid_positions())) >= 0.5 * DP - 1e-9
     # the mesh of a plane beach gives exactly the particles of that PlaneBeach
     plane = _sim(ws.PlaneBeach(toe=TOE, slope=SLOPE))
-    assert np.array_equal(_sorted_rows(pos.copy()), _sorted_rows(np.asarray(plane.positions).copy()))
+    plane_pos = np.asarray(plane.positions).copy()
+    assert np.array_equal(_sorted_rows(pos.copy()), _sorted_rows(plane_pos))
     sim.step(3)
     assert sim.steps == 3 and np.all(np.isfinite(sim.positions))
 
@@ -202,7 +203,8 @@ def _flip(t: np.ndarray, rows: slice | list[int]) -> np.ndarray:
         (lambda p: _flume(ws.MeshBeach(vertices=WEDGE_V, triangles=WEDGE_T,
                                        offset=(0.0, 0.0, -0.01))), "beach.vertices", "spans z"),
         (lambda p: _flume(ws.MeshBeach(
-            **dict(zip(("vertices", "triangles"), _box(0.6, 0.9, 0.05, 0.15, 0.0, 0.35))))),
+            **dict(zip(("vertices", "triangles"), _box(0.6, 0.9, 0.05, 0.15, 0.0, 0.35),
+                       strict=True)))),
          "beach.vertices", "spans z = [0, 0.35]"),
         (lambda p: _flume(ws.MeshBeach(vertices=WEDGE_V, triangles=WEDGE_T,
                                        offset=(-0.48, 0.0, 0.0))).scene(

@@ -65,9 +65,9 @@ import numpy as np
 import numpy.typing as npt
 
 from . import analysis as an
+from . import meshbed
 from . import wave_theory as wt
 from ._core import SceneError
-from . import meshbed
 from .scenes import SceneBuilder, _choice, _integer, _non_negative, _number, _positive
 from .simulation import Simulation
 
@@ -316,7 +316,7 @@ class MeshBeach:
     @staticmethod
     def _array(name: str, values: Any, dtype: type) -> npt.NDArray[Any]:
         try:
-            arr = np.asarray(values, dtype=dtype)
+            arr: npt.NDArray[Any] = np.asarray(values, dtype=dtype)
         except (TypeError, ValueError):
             raise SceneError(f"{name}: expected rows of 3 numbers") from None
         if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:

@@ -181,7 +181,9 @@ def surface_height(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.in
     shape = xq.shape
     xq, yq = xq.reshape(-1), yq.reshape(-1)
     v0, v1, v2 = points[triangles[:, 0]], points[triangles[:, 1]], points[triangles[:, 2]]
-    nz = (v1[:, 0] - v0[:, 0]) * (v2[:, 1] - v0[:, 1]) - (v1[:, 1] - v0[:, 1]) * (v2[:, 0] - v0[:, 0])
+    # twice the signed area of each triangle's horizontal projection (> 0: facing up)
+    nz = ((v1[:, 0] - v0[:, 0]) * (v2[:, 1] - v0[:, 1])
+          - (v1[:, 1] - v0[:, 1]) * (v2[:, 0] - v0[:, 0]))
     scale = float(np.max(np.ptp(points, axis=0))) or 1.0
     up = nz > 1e-12 * scale**2
     a, b, c, det = v0[up], v1[up], v2[up], nz[up]
@@ -222,7 +224,8 @@ def profile_along_line(points: npt.NDArray[np.float64], triangles: npt.NDArray[n
     ya, yb = p[edges[:, 0], 1], p[edges[:, 1], 1]
     xa, xb = p[edges[:, 0], 0], p[edges[:, 1], 0]
     crossing = ((ya - y) * (yb - y) <= 0.0) & (ya != yb)
-    xs = xa[crossing] + (y - ya[crossing]) / (yb[crossing] - ya[crossing]) * (xb[crossing] - xa[crossing])
+    frac = (y - ya[crossing]) / (yb[crossing] - ya[crossing])
+    xs = xa[crossing] + frac * (xb[crossing] - xa[crossing])
     on_line = p[np.abs(p[:, 1] - y) <= 1e-12 * max(1.0, abs(y)), 0]
     breaks = np.unique(np.concatenate([xs, on_line]))
     span = x_max - x_min
