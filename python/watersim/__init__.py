@@ -4,7 +4,8 @@ Public names:
 
 - :class:`Simulation`: a running simulation (wrapper of the core's).
 - :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
-- :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`DampingZone`): the wave
+- :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`MeshBeach` (3D,
+  from an STL file), :class:`DampingZone`): the wave
   flume; :meth:`Flume.simulation` takes a wave (:class:`RegularWave`, :class:`IrregularWave`,
   :class:`SolitaryWave`, :class:`TabulatedMotion`), a paddle (:class:`Piston`, :class:`Flap`)
   and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`, :class:`VelocityWindow`,
@@ -32,6 +33,7 @@ from .flume import (
     FlumeScene,
     FlumeSimulation,
     IrregularWave,
+    MeshBeach,
     Piston,
     PlaneBeach,
     ProfileBeach,
@@ -64,6 +66,7 @@ __all__ = [
     "FlumeSimulation",
     "InstabilityError",
     "IrregularWave",
+    "MeshBeach",
     "Piston",
     "PlaneBeach",
     "ProfileBeach",

@@ -32,7 +32,8 @@ What is built (the core's scene, see ``crates/sph-core/src/scene.rs``):
   the paddle face;
 - water from the paddle to the far wall up to ``depth`` (minus whatever the beach occupies);
 - the beach as a piecewise-linear bed profile (solid below it), a plane beach being the profile
-  ``(toe, 0) -> (x_top, height)`` continued flat at the tank top;
+  ``(toe, 0) -> (x_top, height)`` continued flat at the tank top; or, in 3D, a closed triangle
+  mesh (:class:`MeshBeach`, from an STL file), passed to the core as a mesh obstacle;
 - the paddle: a piston or a flap (hinged at ``hinge_z``), driven by a motion law whose
   coefficients come from :mod:`watersim.wave_theory` (Biesel transfer functions, Madsen's second
   order, spectral synthesis, Goring's solitary wave), or a tabulated displacement;
@@ -64,6 +65,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import analysis as an
+from . import meshbed
 from . import wave_theory as wt
 from ._core import SceneError
 from .scenes import SceneBuilder, _choice, _integer, _non_negative, _number, _positive
@@ -79,6 +81,7 @@ __all__ = [
     "FlumeScene",
     "FlumeSimulation",
     "IrregularWave",
+    "MeshBeach",
     "Piston",
     "PlaneBeach",
     "ProfileBeach",
@@ -230,7 +233,128 @@ class ProfileBeach:
         return list(self.x), list(self.z)
 
 
-Beach = PlaneBeach | ProfileBeach
+@dataclass(frozen=True)
+class MeshBeach:
+    """Bathymetry from a closed triangle mesh (3D flumes only): an STL file, or NumPy vertices
+    and triangles. The solid is the inside of the mesh; the core samples it into wall particles
+    (``layers`` deep below its surface) and keeps the water dp/2 off it, as for the other
+    beaches. Anything the core needs is checked when the beach is made: the file is read with
+    meshio, exactly repeated vertices are merged (an STL stores each triangle's corners), and
+    the surface must be closed, consistently oriented with its triangles facing outward
+    (positive enclosed volume), without degenerate triangles; the flume then checks that the
+    mesh lies inside it (x in [0, length], y in [0, width], z >= 0, below the walls) and clear
+    of the paddle's stroke.
+
+    The analysis reads the bed under each gauge from the mesh (its highest surface over the
+    gauge, 0 where the gauge misses it); the shoreline, toe, beach slope and automatic run-up
+    gauge come from the bed profile along the flume's centre line.
+
+    Attributes:
+        path: surface mesh file: STL (ASCII or binary) or any triangle mesh meshio reads (OBJ,
+            PLY, OFF, ...); in a scene file a relative path is from the scene file's folder.
+        vertices: instead of ``path``: the vertices, ``(n, 3)`` rows x, y, z [m] (before
+            ``scale`` and ``offset``).
+        triangles: with ``vertices``: ``(m, 3)`` vertex indices of each triangle, counter-clockwise
+            seen from outside the solid.
+        scale: factor applied to the vertices [m per file unit], e.g. 0.001 for a file in mm.
+        offset: (x, y, z) added to the scaled vertices [m]: where the mesh's origin goes in
+            flume coordinates.
+    """
+
+    path: str | None = None
+    vertices: tuple[tuple[float, ...], ...] | None = None
+    triangles: tuple[tuple[int, ...], ...] | None = None
+    scale: float = 1.0
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    points: npt.NDArray[np.float64] = dataclasses.field(
+        init=False, repr=False, compare=False)
+    """(n, 3) vertices in flume coordinates [m], duplicates merged."""
+    faces: npt.NDArray[np.int64] = dataclasses.field(init=False, repr=False, compare=False)
+    """(m, 3) triangles indexing :attr:`points`."""
+    volume: float = dataclasses.field(init=False, repr=False, compare=False)
+    """Volume enclosed by the mesh [m^3]."""
+
+    def __post_init__(self) -> None:
+        _set(self, "scale", _positive("beach.scale", self.scale))
+        offset = _finite_tuple("beach.offset", self.offset, 3)
+        if len(offset) != 3:
+            raise SceneError(f"beach.offset: needs 3 values (x, y, z), got {len(offset)}")
+        _set(self, "offset", offset)
+        if (self.path is None) == (self.vertices is None and self.triangles is None):
+            raise SceneError("beach.path: give either a mesh file (path) or vertices and "
+                             "triangles, not both nor neither")
+        if self.path is not None:
+            if not isinstance(self.path, (str, os.PathLike)) or not str(self.path).strip():
+                raise SceneError(f"beach.path: expected a file name, got {self.path!r}")
+            _set(self, "path", os.fspath(self.path))
+            raw, tri = meshbed.read_triangle_mesh(self.path, "beach.path")
+        else:
+            if self.vertices is None or self.triangles is None:
+                missing = "triangles" if self.triangles is None else "vertices"
+                raise SceneError(f"beach.{missing}: vertices and triangles go together")
+            raw = self._array("beach.vertices", self.vertices, np.float64)
+            tri_f = self._array("beach.triangles", self.triangles, np.float64)
+            if not np.all(np.isfinite(raw)):
+                raise SceneError("beach.vertices: values must be finite")
+            if not np.all(tri_f == np.round(tri_f)):
+                raise SceneError("beach.triangles: vertex indices must be whole numbers")
+            tri = tri_f.astype(np.int64)
+            if tri.min() < 0 or tri.max() >= raw.shape[0]:
+                raise SceneError(f"beach.triangles: indices must lie in [0, {raw.shape[0] - 1}] "
+                                 f"(the vertices), got {int(tri.min())}..{int(tri.max())}")
+            # stored as plain tuples: a frozen, comparable builder that a scene file can write
+            _set(self, "vertices", tuple(tuple(float(v) for v in row) for row in raw))
+            _set(self, "triangles", tuple(tuple(int(i) for i in row) for row in tri))
+        pts = raw * self.scale + np.asarray(offset)
+        pts, tri = meshbed.merge_duplicate_vertices(pts, tri)
+        _set(self, "volume", meshbed.check_closed_mesh(pts, tri, self.source_field))
+        pts.setflags(write=False)
+        tri.setflags(write=False)
+        _set(self, "points", pts)
+        _set(self, "faces", tri)
+
+    @staticmethod
+    def _array(name: str, values: Any, dtype: type) -> npt.NDArray[Any]:
+        try:
+            arr: npt.NDArray[Any] = np.asarray(values, dtype=dtype)
+        except (TypeError, ValueError):
+            raise SceneError(f"{name}: expected rows of 3 numbers") from None
+        if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:
+            raise SceneError(f"{name}: expected rows of 3 numbers, got shape {arr.shape}")
+        return arr
+
+    @property
+    def source_field(self) -> str:
+        """The field that gave the mesh (``beach.path`` or ``beach.vertices``), for messages."""
+        return "beach.path" if self.path is not None else "beach.vertices"
+
+    @property
+    def bounds(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """``(min, max)`` corners of the mesh's bounding box [m], flume coordinates."""
+        return self.points.min(axis=0), self.points.max(axis=0)
+
+    def bed(self, x: npt.ArrayLike, y: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Bed height above the floor under ``(x, y)`` [m]: the mesh's highest surface there,
+        0 where the vertical line misses the mesh."""
+        z = meshbed.surface_height(self.points, self.faces, x, y)
+        return np.maximum(np.nan_to_num(z, nan=0.0), 0.0)
+
+    def profile(self, length: float, top: float, y: float | None = None
+                ) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] along the line ``y`` (the centre line of a flume as wide
+        as the mesh when None) from x = 0 to ``length``; ``top`` is not used (the mesh has its
+        own height)."""
+        lo, hi = self.bounds
+        yy = 0.5 * (lo[1] + hi[1]) if y is None else float(y)
+        return meshbed.profile_along_line(self.points, self.faces, yy, 0.0, length)
+
+    def to_core(self) -> dict[str, Any]:
+        """The core's obstacle JSON (``shape = "mesh"``)."""
+        return {"shape": "mesh", "vertices": self.points.tolist(),
+                "triangles": self.faces.tolist()}
+
+
+Beach = PlaneBeach | ProfileBeach | MeshBeach
 
 
 def _bed(px: Sequence[float], pz: Sequence[float], x: npt.ArrayLike) -> npt.NDArray[np.float64]:
@@ -282,7 +406,8 @@ class Flume:
     Attributes:
         length: from the paddle face at rest (x = 0) to the far wall [m].
         depth: still-water depth over the flat floor [m]; the SWL is z = depth.
-        beach: a :class:`PlaneBeach`, a :class:`ProfileBeach`, or ``None`` (flat floor).
+        beach: a :class:`PlaneBeach`, a :class:`ProfileBeach`, a :class:`MeshBeach` (3D only),
+            or ``None`` (flat floor).
         width: inner width [m] for a 3D flume (side walls at y = 0 and y = width); ``None`` in 2D.
         height: height of the tank walls above the floor [m]; ``None``: chosen from the wave
             (``depth + max(depth / 2, 3 H)``, at least the highest bed point).
@@ -341,10 +466,34 @@ class Flume:
                     f"beach.z: the bed rises to {max(beach.z):g} m, above the walls "
                     f"(height = {self.height:g} m)"
                 )
+        elif isinstance(beach, MeshBeach):
+            self._check_mesh(beach)
         else:
             raise SceneError(
-                f"beach: expected a PlaneBeach, a ProfileBeach or None, got {beach!r}"
+                f"beach: expected a PlaneBeach, a ProfileBeach, a MeshBeach or None, got {beach!r}"
             )
+
+    def _check_mesh(self, beach: MeshBeach) -> None:
+        """A mesh beach needs a 3D flume and must lie inside it (the core would clip what lies
+        outside the tank without a word)."""
+        field = beach.source_field
+        if self.width is None:
+            raise SceneError("beach: a MeshBeach (triangle mesh) needs a 3D flume; give the "
+                             "flume a width")
+        lo, hi = beach.bounds
+        tol = 1e-6 * max(self.length, self.width, 1.0)  # float32 STL coordinates
+        limits = [("x", 0, 0.0, self.length, f"the flume's length [0, {self.length:g}] m"),
+                  ("y", 1, 0.0, self.width, f"the flume's width [0, {self.width:g}] m"),
+                  ("z", 2, 0.0, math.inf, "above the floor (z >= 0)")]
+        if self.height is not None:
+            limits[2] = ("z", 2, 0.0, self.height, f"between the floor and the top of the walls "
+                         f"[0, {self.height:g}] m")
+        for name, k, a, b, where in limits:
+            if lo[k] < a - tol or hi[k] > b + tol:
+                raise SceneError(
+                    f"{field}: the mesh spans {name} = [{lo[k]:.6g}, {hi[k]:.6g}] m; it must lie "
+                    f"within {where} (move it with beach.offset, scale it with beach.scale)"
+                )
 
     @property
     def dim(self) -> int:
@@ -954,7 +1103,7 @@ class FlumeScene(SceneBuilder):
         px, pz = self.bed_profile
         # The bed must be flat where the paddle moves.
         reach = law.forward + 2.0 * dp
-        if np.max(_bed(px, pz, np.linspace(0.0, reach, 50))) > 0.0:
+        if np.max(_bed(px, pz, np.linspace(0.0, reach, 50))) > 0.0 or self._mesh_in_reach(reach):
             raise SceneError(
                 f"beach: the bed rises within the paddle's reach (x < {reach:.3g} m, the forward "
                 "stroke plus 2 dp); move the beach away from the paddle"
@@ -987,6 +1136,23 @@ class FlumeScene(SceneBuilder):
                 "runup: the bed does not reach the still-water level, so there is no slope to "
                 "lay a run-up gauge on; give a RunupGauge(start, end) or runup=False"
             )
+
+    def _mesh_in_reach(self, reach: float) -> bool:
+        """Whether a mesh beach rises above the floor at x < ``reach`` anywhere across the
+        flume (a vertex there, or the bed under a grid of dp/2 over that strip)."""
+        beach = self.flume.beach
+        if not isinstance(beach, MeshBeach):
+            return False
+        assert self.flume.width is not None
+        tol = 1e-6 * max(self.flume.length, 1.0)
+        pts = beach.points
+        if np.any((pts[:, 0] < reach) & (pts[:, 2] > tol)):
+            return True
+        step = 0.5 * float(self.dp)  # type: ignore[arg-type]
+        xs = np.linspace(0.0, reach, max(2, math.ceil(reach / step) + 1))
+        ys = np.linspace(0.0, self.flume.width, max(2, math.ceil(self.flume.width / step) + 1))
+        gx, gy = np.meshgrid(xs, ys)
+        return bool(np.max(beach.bed(gx, gy)) > tol)
 
     def _check_point(self, label: str, point: Sequence[float], vertical: bool = True) -> None:
         """A point (x, z) / (x, y, z) inside the flume, or SceneError naming ``label``."""
@@ -1079,27 +1245,41 @@ class FlumeScene(SceneBuilder):
         height = flume.depth + max(0.5 * flume.depth, 3.0 * h)
         if isinstance(flume.beach, ProfileBeach):
             height = max(height, max(flume.beach.z))
+        if isinstance(flume.beach, MeshBeach):
+            height = max(height, float(flume.beach.bounds[1][2]))
         dp = float(self.dp)  # type: ignore[arg-type]
         return math.ceil(height / dp - 1e-9) * dp
 
-    @property
+    @functools.cached_property
     def bed_profile(self) -> tuple[list[float], list[float]]:
-        """Bed vertices ``(x, z)`` [m] of the beach (empty lists for a flat floor)."""
+        """Bed vertices ``(x, z)`` [m] of the beach (empty lists for a flat floor); for a
+        :class:`MeshBeach`, along the flume's centre line."""
         beach = self.flume.beach
         if beach is None:
             return [], []
+        if isinstance(beach, MeshBeach):
+            assert self.flume.width is not None
+            return beach.profile(self.flume.length, self.tank_height, y=0.5 * self.flume.width)
         return beach.profile(self.flume.length, self.tank_height)
 
-    def bed(self, x: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """Bed height above the floor at ``x`` [m]."""
+    def bed(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
+        """Bed height above the floor at ``x`` [m] (under ``(x, y)`` for a :class:`MeshBeach`,
+        ``y`` defaulting to the centre line; the other beaches are uniform across)."""
+        beach = self.flume.beach
+        if isinstance(beach, MeshBeach):
+            assert self.flume.width is not None
+            yy = 0.5 * self.flume.width if y is None else y
+            return beach.bed(x, yy)
         px, pz = self.bed_profile
         if not px:
             return np.zeros_like(np.asarray(x, dtype=np.float64))
         return _bed(px, pz, x)
 
-    def still_depth(self, x: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """Still-water depth at ``x`` [m] (negative where the bed is above the SWL)."""
-        return self.flume.depth - self.bed(x)
+    def still_depth(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None
+                    ) -> npt.NDArray[np.float64]:
+        """Still-water depth at ``x`` (and ``y``, see :meth:`bed`) [m] (negative where the bed
+        is above the SWL)."""
+        return self.flume.depth - self.bed(x, y)
 
     @property
     def beach_slope(self) -> float | None:
@@ -1110,7 +1290,9 @@ class FlumeScene(SceneBuilder):
             return None
         if isinstance(beach, PlaneBeach):
             return beach.slope
-        px, pz = beach.x, beach.z
+        px, pz = (beach.x, beach.z) if isinstance(beach, ProfileBeach) else self.bed_profile
+        if not px:
+            return None
         seg = _shoreline_segment(px, pz, self.flume.depth)
         if seg is not None:
             x0, z0, x1, z1 = seg
@@ -1453,7 +1635,9 @@ class FlumeScene(SceneBuilder):
             fluid = {"min": [0.0, 0.0, 0.0], "max": [flume.length, flume.width, flume.depth]}
         obstacles: list[dict[str, Any]] = []
         px, pz = self.bed_profile
-        if px:
+        if isinstance(flume.beach, MeshBeach):
+            obstacles.append(flume.beach.to_core())
+        elif px:
             obstacles.append({"shape": "profile", "x": list(px), "z": list(pz)})
         paddle: dict[str, Any] = {
             "kind": "piston" if isinstance(self.paddle, Piston) else "flap",
@@ -1561,7 +1745,7 @@ class FlumeGauges:
             np.array([specs[n]["position"][1] for n in self.names], dtype=np.float64)
             if setup.dim == 3 else None
         )
-        self.still_depth = np.asarray(setup.still_depth(self.x), dtype=np.float64)
+        self.still_depth = np.asarray(setup.still_depth(self.x, self.y), dtype=np.float64)
         if elevation:
             t = np.asarray(elevation[0]["t"], dtype=np.float64)
             cols = []

@@ -57,6 +57,7 @@ from .flume import (
     Flume,
     FlumeScene,
     IrregularWave,
+    MeshBeach,
     Piston,
     PlaneBeach,
     ProfileBeach,
@@ -104,6 +105,7 @@ SCENE_TYPES: dict[str, type[SceneBuilder]] = {
 TAGS: dict[type, str] = {
     PlaneBeach: "plane",
     ProfileBeach: "profile",
+    MeshBeach: "mesh",
     RegularWave: "regular",
     IrregularWave: "irregular",
     SolitaryWave: "solitary",
@@ -280,8 +282,9 @@ def _join(path: str, key: str) -> str:
 class _Reader:
     """Turns TOML values into builder objects along the type hints (one file)."""
 
-    def __init__(self, source: str) -> None:
+    def __init__(self, source: str, base: Path | None = None) -> None:
         self.source = source
+        self.base = base
 
     def fail(self, path: str, reason: str) -> SceneFileError:
         where = f"{path}: " if path else ""
@@ -362,6 +365,9 @@ class _Reader:
         for name, f in fields.items():
             if _required(f) and name not in kwargs:
                 raise self.fail(_join(path, name), f"required ({cls.__name__} has no default)")
+        if cls is MeshBeach and isinstance(kwargs.get("path"), str) and self.base is not None:
+            # a mesh file named in a scene file is found next to it, wherever the run starts
+            kwargs["path"] = str(self.base / Path(kwargs["path"]).expanduser())
         try:
             return cls(**kwargs)
         except SceneFileError:
@@ -394,14 +400,15 @@ def _quoted(names: Mapping[str, Any] | Sequence[str]) -> str:
     return ", ".join(repr(n) for n in names)
 
 
-def scene_from_dict(data: Mapping[str, Any], source: str = "scene", name: str = "scene"
-                    ) -> SceneFile:
-    """A scene from the parsed TOML document ``data`` (``source`` names it in messages).
+def scene_from_dict(data: Mapping[str, Any], source: str = "scene", name: str = "scene",
+                    base: Path | None = None) -> SceneFile:
+    """A scene from the parsed TOML document ``data`` (``source`` names it in messages;
+    relative mesh file paths are taken from the folder ``base``, default the current one).
 
     Raises:
         SceneFileError: an unknown key, a value of the wrong type, or a value a builder refuses.
     """
-    reader = _Reader(source)
+    reader = _Reader(source, base)
     doc = dict(data)
     kind = doc.pop("type", None)
     if kind is None:
@@ -416,16 +423,17 @@ def scene_from_dict(data: Mapping[str, Any], source: str = "scene", name: str = 
     return SceneFile(name=name, builder=builder, output=output)
 
 
-def loads(text: str, settings: Sequence[str] = (), source: str = "scene", name: str = "scene"
-          ) -> SceneFile:
-    """A scene from TOML text, with ``key=value`` overrides (see :func:`apply_settings`)."""
+def loads(text: str, settings: Sequence[str] = (), source: str = "scene", name: str = "scene",
+          base: Path | None = None) -> SceneFile:
+    """A scene from TOML text, with ``key=value`` overrides (see :func:`apply_settings`);
+    relative mesh file paths are from the folder ``base`` (default: the current one)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneFileError(f"{source}: not valid TOML: {exc}") from None
     if settings:
         apply_settings(data, settings, source)
-    return scene_from_dict(data, source, name)
+    return scene_from_dict(data, source, name, base)
 
 
 def load(path: str | Path, settings: Sequence[str] = ()) -> SceneFile:
@@ -441,7 +449,7 @@ def load(path: str | Path, settings: Sequence[str] = ()) -> SceneFile:
         raise SceneFileError(f"{p}: no such scene file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneFileError(f"{p}: cannot read the scene file: {exc}") from None
-    scene = loads(text, settings, source=str(p), name=p.stem)
+    scene = loads(text, settings, source=str(p), name=p.stem, base=p.resolve().parent)
     return dataclasses.replace(scene, path=p)
 
 
@@ -707,6 +715,8 @@ def _default_text(cls: type, f: dataclasses.Field[Any]) -> str:
 
 
 def _toml_literal(value: Any) -> str:
+    if isinstance(value, (tuple, list)):  # on one line (tomli-w writes one item per line)
+        return "`[" + ", ".join(_toml_literal(v).strip("`") for v in value) + "]`"
     text = tomli_w.dumps({"v": _plain(value, Any)}).strip()
     return "`" + text[len("v = "):] + "`"
 
@@ -743,7 +753,7 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
            FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "dp",
                                                           "until")) + ("energy_growth_limit",))
     yield ("`[flume]`", "", Flume, ())
-    for cls in (PlaneBeach, ProfileBeach):
+    for cls in (PlaneBeach, ProfileBeach, MeshBeach):
         yield (f'`[flume.beach]` with `type = "{TAGS[cls]}"`', "", cls, ())
     yield ("`[flume.damping]`", "Or `damping = true` / `false`.", DampingZone, ())
     for cls in (RegularWave, IrregularWave, SolitaryWave, TabulatedMotion):
