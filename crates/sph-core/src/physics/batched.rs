@@ -99,7 +99,7 @@ struct Sums {
 /// Sums the pair terms of the collected pairs into `sums` and empties the batch. `FLUID`: the
 /// neighbours are fluid particles (density diffusion acts between fluid particles only).
 #[inline(always)]
-fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: bool>(
+fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const FLUID: bool>(
     c: &Constants,
     kernel: &K,
     f: &Fields<'_, D>,
@@ -128,8 +128,9 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
         s.r2[k] = c.support * c.support;
         s.mask[k] = 0.0;
     }
-    // Gather: the only indexed loads. Pressure and sound speed here, where a non-default
-    // gamma's powf does not keep the arithmetic loop from vectorising.
+    // Gather: the only indexed loads. With gamma = 7 (T7) pressure and sound speed are
+    // computed in the arithmetic loop, vectorised; another gamma needs powf, done here so that
+    // it does not keep that loop from vectorising.
     for k in 0..n_pad {
         let b = s.idx[k] as usize;
         let v = f.vel[b];
@@ -137,9 +138,11 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
             s.vb[d][k] = v.get(d);
         }
         s.rhob[k] = f.rho[b];
-        s.pb[k] = pressure(c, s.rhob[k]);
-        if VISC == VISC_ARTIFICIAL {
-            s.cb[k] = sound_speed(c, s.rhob[k]);
+        if !T7 {
+            s.pb[k] = pressure(c, s.rhob[k]);
+            if VISC == VISC_ARTIFICIAL {
+                s.cb[k] = sound_speed(c, s.rhob[k]);
+            }
         }
     }
 
@@ -150,6 +153,14 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
         let rz = if three { s.r[2][k] } else { 0.0 };
         let r2 = s.r2[k];
         let rhob = s.rhob[k];
+        // Tait with gamma = 7 (eos.rs), x = rho_b / rho0 taken as rho_b * (1 / rho0)
+        let (pb, cb) = if T7 {
+            let x = rhob * c.inv_rho0;
+            let x3 = x * x * x;
+            (c.b_tait * (x3 * x3 * x - 1.0), c.c0 * x3)
+        } else {
+            (s.pb[k], s.cb[k])
+        };
         let dist = r2.sqrt();
         let r2e = r2 + c.eta2;
         let sum_rho = own.rho + rhob;
@@ -169,9 +180,9 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const FLUID: boo
         let vr = vx * rx + vy * ry + vz * rz;
         s.out_visc[k] = (c.h * vr * inv_r2_eta2).abs();
         let inv_rhob = rr * r2e * sum_rho * inv_all;
-        let mut p_term = own.p_rho2 + s.pb[k] * inv_rhob * inv_rhob;
+        let mut p_term = own.p_rho2 + pb * inv_rhob * inv_rhob;
         if VISC == VISC_ARTIFICIAL {
-            let cbar_rhobar = (own.sound_speed + s.cb[k]) * inv_sum_rho;
+            let cbar_rhobar = (own.sound_speed + cb) * inv_sum_rho;
             p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
         }
         let (mut ax, mut ay, mut az) = (-gx * p_term, -gy * p_term, -gz * p_term);
@@ -219,7 +230,7 @@ fn lane_sum(s: &[Real; LANES]) -> Real {
 /// Collects the neighbours of `own` in group `G` and sums their terms. Plain loops, no
 /// closures: a closure would be compiled without the caller's target features.
 #[inline(always)]
-fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const G: usize>(
+fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -243,9 +254,9 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const G: usiz
         while j < end {
             if s.n == BATCH {
                 if fluid {
-                    sum_batch::<D, K, VISC, DIFF, true>(c, kernel, f, own, s, sums);
+                    sum_batch::<D, K, VISC, DIFF, T7, true>(c, kernel, f, own, s, sums);
                 } else {
-                    sum_batch::<D, K, VISC, DIFF, false>(c, kernel, f, own, s, sums);
+                    sum_batch::<D, K, VISC, DIFF, T7, false>(c, kernel, f, own, s, sums);
                 }
             }
             let m = (end - j).min(BATCH - s.n);
@@ -267,15 +278,15 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const G: usiz
         }
     }
     if fluid {
-        sum_batch::<D, K, VISC, DIFF, true>(c, kernel, f, own, s, sums);
+        sum_batch::<D, K, VISC, DIFF, T7, true>(c, kernel, f, own, s, sums);
     } else {
-        sum_batch::<D, K, VISC, DIFF, false>(c, kernel, f, own, s, sums);
+        sum_batch::<D, K, VISC, DIFF, T7, false>(c, kernel, f, own, s, sums);
     }
 }
 
 /// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
 #[inline(always)]
-fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -293,9 +304,9 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     let mut sums = Sums::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);
-    gather_group::<D, K, VISC, DIFF, GROUP_FIXED>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, GROUP_MOVING>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, GROUP_FLUID>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_FIXED>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_MOVING>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_FLUID>(c, kernel, grid, f, &own, s, &mut sums);
 
     let mut acc = D::V::ZERO;
     for d in 0..D::DIM {
@@ -312,7 +323,7 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 
 /// Forces on the fluid particles `first..first + acc.len()` (indices into the fluid range).
 #[inline(always)]
-fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -330,7 +341,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
             *drho_a = 0.0;
             continue;
         }
-        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF>(c, kernel, grid, f, a, &mut s);
+        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, f, a, &mut s);
         *acc_a = acc_v;
         *drho_a = drho_v;
         limits = limits.merge(lim);
@@ -345,7 +356,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -354,7 +365,7 @@ unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
-    chunk_forces::<D, K, VISC, DIFF>(c, kernel, grid, f, first, acc, drho)
+    chunk_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, f, first, acc, drho)
 }
 
 /// Whether the batched loop runs its AVX2 variant on this CPU.
@@ -384,6 +395,22 @@ pub fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     drho: &mut [Real],
 ) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
+    if c.gamma == 7.0 {
+        forces_for_gamma::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho)
+    } else {
+        forces_for_gamma::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho)
+    }
+}
+
+/// [`fluid_forces_batched`] with `T7` = "gamma is 7" fixed at compile time.
+fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
     let avx2 = uses_avx2();
     acc.par_chunks_mut(CHUNK)
         .zip(drho.par_chunks_mut(CHUNK))
@@ -393,10 +420,10 @@ pub fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
             #[cfg(target_arch = "x86_64")]
             if avx2 {
                 // SAFETY: AVX2 support was detected above.
-                return unsafe { chunk_forces_avx2::<D, K, VISC, DIFF>(c, kernel, grid, &f, first, acc_c, drho_c) };
+                return unsafe { chunk_forces_avx2::<D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c) };
             }
             let _ = avx2;
-            chunk_forces::<D, K, VISC, DIFF>(c, kernel, grid, &f, first, acc_c, drho_c)
+            chunk_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c)
         })
         .reduce(|| StepLimits::NONE, StepLimits::merge)
 }
