@@ -96,10 +96,10 @@ struct Sums {
     visc: [Real; LANES],
 }
 
-/// Sums the pair terms of the collected pairs into `sums` and empties the batch. `FLUID`: the
-/// neighbours are fluid particles (density diffusion acts between fluid particles only).
+/// Sums the pair terms of the collected pairs into `sums` and empties the batch. `G`: the group
+/// of the neighbours (density diffusion acts between fluid particles only).
 #[inline(always)]
-fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const FLUID: bool>(
+fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
     c: &Constants,
     kernel: &K,
     f: &Fields<'_, D>,
@@ -107,6 +107,7 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
     s: &mut Scratch,
     sums: &mut Sums,
 ) {
+    let fluid = G == GROUP_FLUID;
     let n = s.n;
     if n == 0 {
         return;
@@ -195,7 +196,7 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         s.out_acc[0][k] = ax;
         s.out_acc[1][k] = ay;
         s.out_acc[2][k] = az;
-        if DIFF != DIFF_NONE && FLUID {
+        if DIFF != DIFF_NONE && fluid {
             let mut drho_ba = rhob - own.rho;
             if DIFF == DIFF_FOURTAKAS {
                 drho_ba -= hydrostatic_density_difference(c, if three { rz } else { ry });
@@ -212,7 +213,7 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
                 sums.acc[d][l] += s.out_acc[d][k];
             }
             sums.drho[l] += s.out_drho[k];
-            if DIFF != DIFF_NONE && FLUID {
+            if DIFF != DIFF_NONE && fluid {
                 sums.diff[l] += s.out_diff[k];
             }
             sums.visc[l] = sums.visc[l].max(s.out_visc[k]);
@@ -241,7 +242,6 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
 ) {
     let support2 = c.support * c.support;
     let pa = f.pos[own.slot];
-    let fluid = G == GROUP_FLUID;
     for row in 0..s.rows.n {
         let (begin, end) = grid.row_slots(G, &s.rows, row);
         let (mut j, end) = (begin as usize, end as usize);
@@ -253,11 +253,7 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
         // branch, which the particle lattice makes predictable.
         while j < end {
             if s.n == BATCH {
-                if fluid {
-                    sum_batch::<D, K, VISC, DIFF, T7, true>(c, kernel, f, own, s, sums);
-                } else {
-                    sum_batch::<D, K, VISC, DIFF, T7, false>(c, kernel, f, own, s, sums);
-                }
+                sum_batch::<D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
             }
             let m = (end - j).min(BATCH - s.n);
             let mut k = s.n;
@@ -277,11 +273,7 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
             j += m;
         }
     }
-    if fluid {
-        sum_batch::<D, K, VISC, DIFF, T7, true>(c, kernel, f, own, s, sums);
-    } else {
-        sum_batch::<D, K, VISC, DIFF, T7, false>(c, kernel, f, own, s, sums);
-    }
+    sum_batch::<D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
 }
 
 /// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
