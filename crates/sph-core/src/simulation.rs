@@ -1025,7 +1025,7 @@ mod batched_loop_tests {
     use super::*;
     use crate::kernel::{CubicSpline, WendlandC2};
     use crate::math::{Dim2, Dim3};
-    use crate::physics::batched::fluid_forces_batched;
+    use crate::physics::batched::{fluid_forces_batched, fluid_forces_variant};
     use crate::physics::forces::fluid_forces_scalar;
     use crate::physics::{DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR};
 
@@ -1055,6 +1055,17 @@ mod batched_loop_tests {
         }
         assert!((lim_s.max_acc - lim_b.max_acc).abs() <= 1e-11 * lim_s.max_acc);
         assert!((lim_s.min_dt_cv - lim_b.min_dt_cv).abs() <= 1e-11 * lim_s.min_dt_cv);
+
+        // The AVX2 variant (intrinsic candidate scan, wide arithmetic) and the portable one
+        // give the same bits.
+        if crate::physics::batched::uses_avx2() {
+            let (mut acc_p, mut drho_p) = (vec![D::V::ZERO; n], vec![0.0; n]);
+            let (mut acc_x, mut drho_x) = (vec![D::V::ZERO; n], vec![0.0; n]);
+            let lim_p = fluid_forces_variant::<D, K, VISC, DIFF>(&s.c, &s.kernel, &s.grid, fields, &mut acc_p, &mut drho_p, false);
+            let lim_x = fluid_forces_variant::<D, K, VISC, DIFF>(&s.c, &s.kernel, &s.grid, fields, &mut acc_x, &mut drho_x, true);
+            assert!(acc_p == acc_x && drho_p == drho_x, "AVX2 and portable variants differ");
+            assert!(lim_p.max_acc == lim_x.max_acc && lim_p.min_dt_cv == lim_x.min_dt_cv);
+        }
     }
 
     fn dambreak(dim: usize, extra: &str) -> String {

@@ -31,16 +31,19 @@ use crate::particles::KIND_EXCLUDED;
 const BATCH: usize = 64;
 /// Partial sums per particle (the SIMD width in f64 of AVX2).
 const LANES: usize = 4;
+/// Room for the candidate scan's four-wide stores, which may write up to three entries past
+/// the batch's last pair.
+const SCAN_ROOM: usize = BATCH + LANES;
 
 /// Per-chunk working arrays: the neighbours collected for one particle and one group, not yet
 /// summed, their gathered fields and their pair terms. Created once per chunk of particles
 /// (on the stack); only the first `n` (padded) entries are ever read.
 struct Scratch {
     n: usize,
-    idx: [u32; BATCH],
+    idx: [u32; SCAN_ROOM],
     /// `r_ab` by component (x, y, z; z unused in 2D).
-    r: [[Real; BATCH]; 3],
-    r2: [Real; BATCH],
+    r: [[Real; SCAN_ROOM]; 3],
+    r2: [Real; SCAN_ROOM],
     mask: [Real; BATCH],
     vb: [[Real; BATCH]; 3],
     rhob: [Real; BATCH],
@@ -57,11 +60,12 @@ struct Scratch {
 impl Scratch {
     fn new() -> Self {
         let z = [0.0; BATCH];
+        let room = [0.0; SCAN_ROOM];
         Self {
             n: 0,
-            idx: [0; BATCH],
-            r: [z; 3],
-            r2: z,
+            idx: [0; SCAN_ROOM],
+            r: [room; 3],
+            r2: room,
             mask: z,
             vb: [z; 3],
             rhob: z,
@@ -231,7 +235,7 @@ fn lane_sum(s: &[Real; LANES]) -> Real {
 /// Collects the neighbours of `own` in group `G` and sums their terms. Plain loops, no
 /// closures: a closure would be compiled without the caller's target features.
 #[inline(always)]
-fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
+fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -257,11 +261,24 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
             }
             let m = (end - j).min(BATCH - s.n);
             let mut k = s.n;
-            for (l, &pb) in f.pos[j..j + m].iter().enumerate() {
+            // AVX2: the candidates four at a time, without branches; otherwise one by one.
+            let mut done = 0;
+            #[cfg(target_arch = "x86_64")]
+            if AVX2 {
+                let flat: &[Real] = bytemuck::cast_slice(f.pos);
+                let mut a = [0.0; 3];
+                for (d, x) in a.iter_mut().enumerate().take(D::DIM) {
+                    *x = pa.get(d);
+                }
+                // SAFETY: AVX2 is true only in `chunk_forces_avx2`, which runs where AVX2 was
+                // detected; `m <= BATCH - s.n` keeps the stores within SCAN_ROOM.
+                (k, done) = unsafe { x86::scan_quads(D::DIM, a, flat, j, m, support2, s, k) };
+            }
+            for (l, &pb) in f.pos[j + done..j + m].iter().enumerate() {
                 let r = pa - pb;
                 let r2 = r.length_squared();
                 if r2 < support2 {
-                    s.idx[k] = (j + l) as u32;
+                    s.idx[k] = (j + done + l) as u32;
                     for d in 0..D::DIM {
                         s.r[d][k] = r.get(d);
                     }
@@ -278,7 +295,7 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
 
 /// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
 #[inline(always)]
-fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -296,9 +313,9 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: 
     let mut sums = Sums::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_FIXED>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_MOVING>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_FLUID>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_FIXED, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_MOVING, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<D, K, VISC, DIFF, T7, GROUP_FLUID, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
 
     let mut acc = D::V::ZERO;
     for d in 0..D::DIM {
@@ -315,7 +332,7 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: 
 
 /// Forces on the fluid particles `first..first + acc.len()` (indices into the fluid range).
 #[inline(always)]
-fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -333,7 +350,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
             *drho_a = 0.0;
             continue;
         }
-        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, f, a, &mut s);
+        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF, T7, AVX2>(c, kernel, grid, f, a, &mut s);
         *acc_a = acc_v;
         *drho_a = drho_v;
         limits = limits.merge(lim);
@@ -357,7 +374,7 @@ unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, c
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
-    chunk_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, f, first, acc, drho)
+    chunk_forces::<D, K, VISC, DIFF, T7, true>(c, kernel, grid, f, first, acc, drho)
 }
 
 /// Whether the batched loop runs its AVX2 variant on this CPU.
@@ -386,15 +403,30 @@ pub fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
+    fluid_forces_variant::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho, uses_avx2())
+}
+
+/// [`fluid_forces_batched`] with the variant chosen by the caller: `avx2` must be false where
+/// [`uses_avx2`] is (tests compare the two variants' bits).
+pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+    avx2: bool,
+) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
+    assert!(!avx2 || uses_avx2(), "the AVX2 variant needs a CPU with AVX2");
     if c.gamma == 7.0 {
-        forces_for_gamma::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho)
+        forces_for_gamma::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2)
     } else {
-        forces_for_gamma::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho)
+        forces_for_gamma::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2)
     }
 }
 
-/// [`fluid_forces_batched`] with `T7` = "gamma is 7" fixed at compile time.
+/// [`fluid_forces_variant`] with `T7` = "gamma is 7" fixed at compile time.
 fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
@@ -402,8 +434,8 @@ fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7:
     f: Fields<'_, D>,
     acc: &mut [D::V],
     drho: &mut [Real],
+    avx2: bool,
 ) -> StepLimits {
-    let avx2 = uses_avx2();
     acc.par_chunks_mut(CHUNK)
         .zip(drho.par_chunks_mut(CHUNK))
         .enumerate()
@@ -411,11 +443,144 @@ fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7:
             let first = ci * CHUNK;
             #[cfg(target_arch = "x86_64")]
             if avx2 {
-                // SAFETY: AVX2 support was detected above.
+                // SAFETY: `avx2` is true only where AVX2 was detected (asserted above).
                 return unsafe { chunk_forces_avx2::<D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c) };
             }
             let _ = avx2;
-            chunk_forces::<D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c)
+            chunk_forces::<D, K, VISC, DIFF, T7, false>(c, kernel, grid, &f, first, acc_c, drho_c)
         })
         .reduce(|| StepLimits::NONE, StepLimits::merge)
+}
+
+/// The candidate scan with AVX2 intrinsics.
+#[cfg(target_arch = "x86_64")]
+mod x86 {
+    use std::arch::x86_64::*;
+
+    use super::{Real, Scratch};
+
+    /// Compress tables for one lane order: for each 4-bit mask of lanes inside the support, the
+    /// 32-bit source indices that move the passing lanes' f64 values to the front in candidate
+    /// order, the candidates' offsets (for the neighbour indices) and their count; and, for
+    /// 0..=4 valid candidates, the mask of their lanes.
+    struct Tables {
+        lanes: [[i32; 8]; 16],
+        offsets: [[i32; 4]; 16],
+        counts: [usize; 16],
+        valid: [i32; 5],
+    }
+
+    /// `lane_of[c]`: the lane that holds candidate `c` after the loads and shuffles.
+    const fn tables(lane_of: [usize; 4]) -> Tables {
+        let mut t = Tables { lanes: [[0; 8]; 16], offsets: [[0; 4]; 16], counts: [0; 16], valid: [0; 5] };
+        let mut bits = 0;
+        while bits < 16 {
+            let mut n = 0;
+            let mut c = 0;
+            while c < 4 {
+                let lane = lane_of[c];
+                if bits & (1 << lane) != 0 {
+                    t.lanes[bits][2 * n] = 2 * lane as i32;
+                    t.lanes[bits][2 * n + 1] = 2 * lane as i32 + 1;
+                    t.offsets[bits][n] = c as i32;
+                    n += 1;
+                }
+                c += 1;
+            }
+            t.counts[bits] = n;
+            bits += 1;
+        }
+        let mut v = 1;
+        while v <= 4 {
+            t.valid[v] = t.valid[v - 1] | (1 << lane_of[v - 1]);
+            v += 1;
+        }
+        t
+    }
+    /// 2D: `unpacklo/unpackhi` of `[x0 y0 | x1 y1]` and `[x2 y2 | x3 y3]` hold the candidates in
+    /// the lane order 0, 2, 1, 3. 3D: the shuffles keep the natural order.
+    const TABLES_2D: Tables = tables([0, 2, 1, 3]);
+    const TABLES_3D: Tables = tables([0, 1, 2, 3]);
+
+    /// Moves the f64 lanes of `v` as `perm` (pairs of 32-bit indices) says. A function, not a
+    /// closure: closures do not inherit target features.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn compress(v: __m256d, perm: __m256i) -> __m256d {
+        _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm))
+    }
+
+    /// Tests the candidates at slots `first..first + m` four at a time against the support and
+    /// appends those inside to the batch at `k`, in candidate order, exactly as the scalar scan
+    /// does (the same `r = pa - pb`, the same `(x^2 + y^2) + z^2` without fused multiply-add,
+    /// the same `<`): the same pairs and the same bits. A last, partial quad reads the
+    /// positions that follow (when the array has them) and masks them off. Returns the new batch
+    /// length and the number of candidates scanned; the caller scans the rest one by one.
+    /// `pos` is the flat position array (`dim` values per particle, 2 or 3: a constant after
+    /// inlining).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2; `k + m + 3` must not exceed the scratch arrays' SCAN_ROOM
+    /// (the stores write four entries at a time).
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) unsafe fn scan_quads(
+        dim: usize,
+        pa: [Real; 3],
+        pos: &[Real],
+        first: usize,
+        m: usize,
+        support2: Real,
+        s: &mut Scratch,
+        mut k: usize,
+    ) -> (usize, usize) {
+        let t = if dim == 2 { &TABLES_2D } else { &TABLES_3D };
+        let n_slots = pos.len() / dim;
+        // quads that may be read whole: a partial last one needs the slots after the row
+        let quads = if first + m.div_ceil(4) * 4 <= n_slots { m.div_ceil(4) } else { m / 4 };
+        debug_assert!(k + 4 * quads <= s.idx.len());
+        let (ax, ay, az) = (_mm256_set1_pd(pa[0]), _mm256_set1_pd(pa[1]), _mm256_set1_pd(pa[2]));
+        let limit = _mm256_set1_pd(support2);
+        for q in 0..quads {
+            let slot = first + 4 * q;
+            // SAFETY (every pointer access): slot + 4 <= n_slots as checked above, and the
+            // stores stay within SCAN_ROOM by the caller's contract.
+            unsafe {
+                let p = pos.as_ptr().add(dim * slot);
+                let (rx, ry, rz) = if dim == 2 {
+                    let a = _mm256_loadu_pd(p); // x0 y0 | x1 y1
+                    let b = _mm256_loadu_pd(p.add(4)); // x2 y2 | x3 y3
+                    // lanes: candidates 0 2 | 1 3
+                    (_mm256_sub_pd(ax, _mm256_unpacklo_pd(a, b)), _mm256_sub_pd(ay, _mm256_unpackhi_pd(a, b)), az)
+                } else {
+                    // x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3, reloaded as 128-bit halves:
+                    let xy02 = _mm256_loadu2_m128d(p.add(6), p); // x0 y0 | x2 y2
+                    let zx = _mm256_loadu2_m128d(p.add(8), p.add(2)); // z0 x1 | z2 x3
+                    let yz = _mm256_loadu2_m128d(p.add(10), p.add(4)); // y1 z1 | y3 z3
+                    let x = _mm256_shuffle_pd::<0b1010>(xy02, zx);
+                    let y = _mm256_shuffle_pd::<0b0101>(xy02, yz);
+                    let z = _mm256_shuffle_pd::<0b1010>(zx, yz);
+                    (_mm256_sub_pd(ax, x), _mm256_sub_pd(ay, y), _mm256_sub_pd(az, z))
+                };
+                let mut r2 = _mm256_add_pd(_mm256_mul_pd(rx, rx), _mm256_mul_pd(ry, ry));
+                if dim == 3 {
+                    r2 = _mm256_add_pd(r2, _mm256_mul_pd(rz, rz));
+                }
+                let inside = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(r2, limit));
+                let bits = (inside & t.valid[(m - 4 * q).min(4)]) as usize;
+                let perm = _mm256_loadu_si256(t.lanes[bits].as_ptr().cast());
+                _mm256_storeu_pd(s.r[0].as_mut_ptr().add(k), compress(rx, perm));
+                _mm256_storeu_pd(s.r[1].as_mut_ptr().add(k), compress(ry, perm));
+                if dim == 3 {
+                    _mm256_storeu_pd(s.r[2].as_mut_ptr().add(k), compress(rz, perm));
+                }
+                _mm256_storeu_pd(s.r2.as_mut_ptr().add(k), compress(r2, perm));
+                let idx = _mm_add_epi32(_mm_set1_epi32(slot as i32), _mm_loadu_si128(t.offsets[bits].as_ptr().cast()));
+                _mm_storeu_si128(s.idx.as_mut_ptr().add(k).cast(), idx);
+                k += t.counts[bits];
+            }
+        }
+        (k, (4 * quads).min(m))
+    }
 }
