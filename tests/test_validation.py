@@ -239,7 +239,7 @@ def test_pareto_front_and_cheapest_run() -> None:
     assert cheapest_meeting(runs, "pressure_rms", 0.001) is None
 
 
-def test_self_convergence_of_synthetic_fronts() -> None:
+def test_self_convergence_of_synthetic_fronts(tmp_path) -> None:
     t = np.linspace(0.0, 0.7, 71)
     exact = 1.0 + 4.0 * t**2
 
@@ -254,6 +254,17 @@ def test_self_convergence_of_synthetic_fronts() -> None:
     for r, diff in out:
         rel = exact * (1.0 + 3.0 * r["dp"] ** 2) / ref - 1.0
         assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
+    # a second series under its own key (the column height): the runs without it are left out
+    with_height = [run(0.1), run(0.05), run(0.025), run(0.0125)]
+    for r in with_height[1:]:
+        r["details"]["height_h"] = list(2.0 - t * (1.0 + r["dp"]))
+    height = self_convergence(with_height, "front_t", "height_h")
+    assert [r["dp"] for r, _ in height] == [0.05, 0.025]
+    for r, diff in height:
+        rel = (2.0 - t * (1.0 + r["dp"])) / (2.0 - t * 1.0125) - 1.0
+        assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
+    text = write_report(with_height, tmp_path).read_text()
+    assert "difference of the column height to the finest run's" in text
 
 
 def test_report_writes_readme_and_plots(tmp_path) -> None:
