@@ -919,7 +919,8 @@ CASES: dict[str, Case] = {
              "RMS pressure error <= 1 % of rho0 g d", _run_tank,
              report_details=("surface_mean_minus_depth",)),
         Case("dambreak2d", "2D dam break, 1 m x 2 m column (n^2 = 2), to 0.7 s",
-             "Martin & Moyce (1952) surge front (lethe set)", "column width / dp", 1.0,
+             "Martin & Moyce (1952) surge front (lethe set) and residual column height (their "
+             "n^2 = 2 table)", "column width / dp", 1.0,
              (10.0, 20.0, 40.0), (8.0,), "front_rms", 0.10,
              "RMS relative front error <= 10 %", _run_dambreak, _DAMBREAK2D_NOTE,
              report_details=("mean_lead_s", "best_shift_s", "front_rms_pysph_a2.25in",

@@ -209,7 +209,7 @@ def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: s
     for ax in (ax1, ax2):
         ax.grid(True, which="both", alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7)
+            ax.legend(fontsize=7, framealpha=0.5)  # lines behind the legend stay visible
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
