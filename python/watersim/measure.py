@@ -46,8 +46,8 @@ MARTIN_MOYCE_SETS: dict[str, str] = {
 """Martin & Moyce n^2 = 2 front sets shipped in ``watersim/data``; ``"lethe"`` is the primary."""
 
 MARTIN_MOYCE_HEIGHT_FILE = "mm1952_height_n2-2_ocellaris.csv"
-"""Martin & Moyce (1952) residual column height for n^2 = 2 (their Table 6 as transcribed in
-Ocellaris; provenance in ``watersim/data/SOURCES.md``)."""
+"""Martin & Moyce (1952) residual column height for n^2 = 2, as transcribed in Ocellaris from the
+paper's tables ("Table 2 and 6" there); provenance in ``watersim/data/SOURCES.md``."""
 
 
 def _connected_extent(values: npt.NDArray[np.float64], max_gap: float) -> float:
