@@ -14,6 +14,7 @@ from watersim.measure import (
     front_error,
     front_position,
     load_martin_moyce,
+    load_martin_moyce_height,
     water_column_height,
 )
 
@@ -114,6 +115,22 @@ def test_reference_sets_load_in_dimensionless_form() -> None:
         assert load_martin_moyce(name).tau.size >= 10
     with pytest.raises(ValueError, match="lethe"):
         load_martin_moyce("nope")
+
+
+def test_column_height_reference_loads_in_dimensionless_form() -> None:
+    ref = load_martin_moyce_height()
+    assert ref.n2 == 2.0 and ref.tau.size == 17
+    assert (ref.tau[0], ref.eta[0]) == (0.56, 0.94) and (ref.tau[-1], ref.eta[-1]) == (7.40, 0.06)
+    assert np.all(np.diff(ref.tau) > 0) and np.all(np.diff(ref.eta) < 0)
+    # read at fixed marks: eta on steps of 1/18 of the initial height, to two decimals
+    assert np.allclose(np.round(ref.eta * 18.0), ref.eta * 18.0, atol=0.11)
+    t, h = ref.dimensional(width=0.5, g=9.81)
+    assert t[0] == pytest.approx(0.56 / math.sqrt(9.81 / 0.5))
+    assert h[0] == pytest.approx(0.94 * 2.0 * 0.5)
+    # the time is t sqrt(g/a): the top of the column falls slower than free fall from rest
+    # (with the front's t sqrt(2g/a) the first point would fall faster than gravity allows)
+    assert (1.0 - ref.eta[0]) * 2.0 < 0.5 * ref.tau[0] ** 2
+    assert (1.0 - ref.eta[0]) * 2.0 > 0.25 * ref.tau[0] ** 2
 
 
 def _reference_curve(width: float, g: float, dt: float = 0.001, t_end: float = 0.7):

@@ -11,7 +11,12 @@ import pytest
 
 from watersim import wave_theory as wt
 from watersim.cli import main
-from watersim.measure import front_error, load_martin_moyce
+from watersim.measure import (
+    MartinMoyceHeight,
+    front_error,
+    load_martin_moyce,
+    load_martin_moyce_height,
+)
 from watersim.validation import CASES, StandingWaveTank, metrics, run_case
 from watersim.validation.report import (
     cheapest_meeting,
@@ -70,6 +75,55 @@ def test_best_shift_recovers_a_time_lead() -> None:
     shifted = metrics.front_error_best_shift(t, x, 1.0, G)
     assert shifted.shift_s == pytest.approx(lead, abs=1e-3)  # ... which the shift removes
     assert shifted.rms_rel_error < 5e-3
+
+
+def _height_curve(width: float) -> tuple[np.ndarray, np.ndarray]:
+    """The Martin & Moyce height itself, sampled every 0.01 s and at the tabulated times."""
+    t_ref, h_ref = load_martin_moyce_height().dimensional(width, G)
+    t = np.union1d(np.arange(0.0, 0.7001, 0.01), t_ref[t_ref <= 0.7])
+    h = np.interp(t, np.concatenate([[0.0], t_ref]), np.concatenate([[2.0 * width], h_ref]))
+    return t, h
+
+
+def test_column_height_error_of_a_scaled_martin_moyce_curve() -> None:
+    t, exact = _height_curve(1.0)
+    err = metrics.column_height_error(t, exact, 1.0, G)
+    assert err.rms_rel_error == pytest.approx(0.0, abs=1e-12)
+    assert err.n_points == 9  # tau = 0.56 ... 2.00 lie within 0.7 s for a = 1 m
+    assert err.t_max_s == pytest.approx(2.00 / math.sqrt(G))
+    # a column 10 % too high everywhere: 10 % at every point, signed positive
+    high = metrics.column_height_error(t, 1.1 * exact, 1.0, G)
+    assert high.rms_rel_error == pytest.approx(0.1) and high.max_rel_error == pytest.approx(0.1)
+    assert high.mean_rel_error == pytest.approx(0.1)
+    # a known error at one point only: 18 % at the last of 9 points -> RMS 0.18 / 3
+    bumped = exact.copy()
+    last = np.argmin(np.abs(t - 2.00 / math.sqrt(G)))
+    bumped[last] *= 1.18
+    one = metrics.column_height_error(t, bumped, 1.0, G)
+    assert one.rms_rel_error == pytest.approx(0.18 / 3.0)
+    assert one.max_rel_error == pytest.approx(0.18)
+    # the shift is added to the simulated times: a run 0.05 s late is matched by shift -0.05
+    late = np.interp(t - 0.05, t, exact)
+    assert metrics.column_height_error(t, late, 1.0, G).rms_rel_error > 0.03
+    assert metrics.column_height_error(t + 0.05, exact, 1.0, G, shift=-0.05).rms_rel_error \
+        == pytest.approx(0.0, abs=1e-12)
+
+
+def test_column_height_error_against_a_wrong_reference_fails() -> None:
+    t, exact = _height_curve(1.0)
+    ref = load_martin_moyce_height()
+    # the front's time scaling t sqrt(2 g / a) (a factor sqrt 2 in time) instead of t sqrt(g / a)
+    wrong_time = MartinMoyceHeight(tau=ref.tau * math.sqrt(2.0), eta=ref.eta, n2=ref.n2)
+    assert metrics.column_height_error(t, exact, 1.0, G, wrong_time).rms_rel_error > 0.10
+    # heights over a instead of over n^2 a
+    wrong_scale = MartinMoyceHeight(tau=ref.tau, eta=ref.eta, n2=1.0)
+    assert metrics.column_height_error(t, exact, 1.0, G, wrong_scale).rms_rel_error > 0.9
+    with pytest.raises(ValueError, match="holds no tabulated height"):
+        metrics.column_height_error([0.0, 0.1], [2.0, 2.0], 1.0, G)
+    with pytest.raises(ValueError, match="increasing"):
+        metrics.column_height_error([0.0, 0.5, 0.5], [2.0, 1.5, 1.4], 1.0, G)
+    with pytest.raises(ValueError, match="width"):
+        metrics.column_height_error(t, exact, 0.0, G)
 
 
 def test_standing_wave_period_deep_water_limit() -> None:
@@ -185,7 +239,7 @@ def test_pareto_front_and_cheapest_run() -> None:
     assert cheapest_meeting(runs, "pressure_rms", 0.001) is None
 
 
-def test_self_convergence_of_synthetic_fronts() -> None:
+def test_self_convergence_of_synthetic_fronts(tmp_path) -> None:
     t = np.linspace(0.0, 0.7, 71)
     exact = 1.0 + 4.0 * t**2
 
@@ -200,6 +254,17 @@ def test_self_convergence_of_synthetic_fronts() -> None:
     for r, diff in out:
         rel = exact * (1.0 + 3.0 * r["dp"] ** 2) / ref - 1.0
         assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
+    # a second series under its own key (the column height): the runs without it are left out
+    with_height = [run(0.1), run(0.05), run(0.025), run(0.0125)]
+    for r in with_height[1:]:
+        r["details"]["height_h"] = list(2.0 - t * (1.0 + r["dp"]))
+    height = self_convergence(with_height, "front_t", "height_h")
+    assert [r["dp"] for r, _ in height] == [0.05, 0.025]
+    for r, diff in height:
+        rel = (2.0 - t * (1.0 + r["dp"])) / (2.0 - t * 1.0125) - 1.0
+        assert diff == pytest.approx(np.sqrt(np.mean(rel**2)))
+    text = write_report(with_height, tmp_path).read_text()
+    assert "difference of the column height to the finest run's" in text
 
 
 def test_report_writes_readme_and_plots(tmp_path) -> None:
@@ -273,6 +338,23 @@ def test_cli_validate_tiny_case(tmp_path, capsys) -> None:
     again = tmp_path / "again"
     assert main(["validate", "--from-json", str(out_json), "--report", str(again)]) == 0
     assert (again / "README.md").exists()
+
+
+def test_dambreak2d_records_front_and_column_height() -> None:
+    r = run_case("dambreak2d", 6.0, quick=True)  # dp = 1/6 m, to 0.4 s: about a second
+    assert r["status"] == "ok"
+    assert {"front_rms", "front_max", "front_rms_shifted", "height_rms", "height_max"} <= set(
+        r["errors"])
+    d = r["details"]
+    assert d["height_n_points"] == 4  # tau = 0.56 ... 1.08 lie within 0.4 s for a = 1 m
+    assert len(d["height_h"]) == len(d["front_t"]) and d["height_h"][0] <= 2.0 + 1e-9
+    # the recorded metric is the one of the recorded samples
+    again = metrics.column_height_error(d["front_t"], d["height_h"], 1.0, G)
+    assert r["errors"]["height_rms"] == pytest.approx(again.rms_rel_error)
+    assert 0.0 < r["errors"]["height_rms"] < 0.3
+    assert d["front_rms_pysph_a2.25in"] is not None
+    three = run_case("dambreak3d", 3.0, quick=True)  # the 3D case keeps the front only
+    assert "height_rms" not in three["errors"] and "height_h" not in three["details"]
 
 
 def test_process_pool_executor() -> None:

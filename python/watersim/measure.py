@@ -9,7 +9,9 @@ Reference data (``watersim/data``, see ``SOURCES.md`` there): Martin & Moyce (19
 of a collapsing column of width L1 (``a`` in the paper) and height 2 L1 (n^2 = 2), in the
 dimensionless form ``tau = t sqrt(2 g / L1)``, ``delta = x / L1``. The experiment's gate took
 time to open, so simulated fronts usually lead the data: :func:`front_error` reports that lead and
-does not shift the data.
+does not shift the data. The same paper tabulates the residual height of the column at the back
+wall, ``eta = h / (n^2 a)`` against ``tau = t sqrt(g / a)`` (note: no factor n in this time),
+shipped for n^2 = 2 as :func:`load_martin_moyce_height`.
 """
 
 from __future__ import annotations
@@ -24,12 +26,15 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "MARTIN_MOYCE_HEIGHT_FILE",
     "MARTIN_MOYCE_SETS",
     "FrontError",
     "MartinMoyce",
+    "MartinMoyceHeight",
     "front_error",
     "front_position",
     "load_martin_moyce",
+    "load_martin_moyce_height",
     "water_column_height",
 ]
 
@@ -39,6 +44,10 @@ MARTIN_MOYCE_SETS: dict[str, str] = {
     "pysph_a1.125in": "mm1952_front_n2-2_a1.125in_pysph.csv",
 }
 """Martin & Moyce n^2 = 2 front sets shipped in ``watersim/data``; ``"lethe"`` is the primary."""
+
+MARTIN_MOYCE_HEIGHT_FILE = "mm1952_height_n2-2_ocellaris.csv"
+"""Martin & Moyce (1952) residual column height for n^2 = 2, as transcribed in Ocellaris from the
+paper's tables ("Table 2 and 6" there); provenance in ``watersim/data/SOURCES.md``."""
 
 
 def _connected_extent(values: npt.NDArray[np.float64], max_gap: float) -> float:
@@ -175,6 +184,34 @@ def load_martin_moyce(name: str = "lethe") -> MartinMoyce:
     rows = list(csv.reader(text.splitlines()))
     data = np.array([[float(a), float(b)] for a, b in rows[1:] if a.strip()], dtype=np.float64)
     return MartinMoyce(name=name, tau=data[:, 0], delta=data[:, 1])
+
+
+@dataclass(frozen=True)
+class MartinMoyceHeight:
+    """The Martin & Moyce residual column height in their dimensionless form.
+
+    Attributes:
+        tau: ``t sqrt(g / a)`` [-] (a: the column width; unlike the front's time, no factor n).
+        eta: ``h / (n^2 a)`` [-], the water height at the back wall over the initial height.
+        n2: the column's height over its width, n^2 [-].
+    """
+
+    tau: npt.NDArray[np.float64]
+    eta: npt.NDArray[np.float64]
+    n2: float = 2.0
+
+    def dimensional(self, width: float, g: float = 9.81) -> tuple[np.ndarray, np.ndarray]:
+        """(t [s], h [m]) for a column of width ``width`` [m] (height ``n2 * width``)."""
+        return self.tau / math.sqrt(g / width), self.eta * self.n2 * width
+
+
+def load_martin_moyce_height() -> MartinMoyceHeight:
+    """Load the Martin & Moyce (1952) residual column height for n^2 = 2 shipped with the package
+    (17 points, tau = 0.56 to 7.40, eta on steps of 1/18: readings at fixed marks)."""
+    text = resources.files("watersim.data").joinpath(MARTIN_MOYCE_HEIGHT_FILE).read_text("utf-8")
+    rows = list(csv.reader(text.splitlines()))
+    data = np.array([[float(a), float(b)] for a, b in rows[1:] if a.strip()], dtype=np.float64)
+    return MartinMoyceHeight(tau=data[:, 0], eta=data[:, 1], n2=2.0)
 
 
 @dataclass(frozen=True)

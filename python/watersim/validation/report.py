@@ -27,6 +27,13 @@ __all__ = [
 
 Record = Mapping[str, Any]
 
+SERIES: tuple[tuple[str, str, str], ...] = (
+    ("front", "front_t", "front_x"),
+    ("column height", "front_t", "height_h"),
+)
+"""Time series in a record's ``details`` whose self-convergence the report shows: (label,
+times key, values key); the dam breaks record the front, dambreak2d also the column height."""
+
 FLAT_ORDER = 0.2
 """An observed order below this in magnitude is reported as a level error, neither falling nor
 rising with dp."""
@@ -113,7 +120,8 @@ def self_convergence(runs: Sequence[Record], t_key: str = "front_t", x_key: str 
         (record, difference) for every finished run but the finest, coarsest first.
     """
     series = [r for r in runs if r.get("status") == "ok"
-              and len((r.get("details") or {}).get(t_key) or []) >= 2]
+              and len((r.get("details") or {}).get(t_key) or []) >= 2
+              and len(r["details"].get(x_key) or []) == len(r["details"][t_key])]
     if len(series) < 2:
         return []
     series.sort(key=lambda r: -float(r["dp"]))
@@ -182,14 +190,16 @@ def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: s
             ax1.step([float(r["wall_s"]) for r in front], [_error(r, primary) for r in front],
                      where="post", color="k", lw=2.5, alpha=0.35, marker="o", ms=12,
                      mfc="none", label=f"Pareto front ({primary})")
-    selfconv = self_convergence(runs)
-    if selfconv:
+    for j, (what, t_key, x_key) in enumerate(SERIES):
+        selfconv = self_convergence(runs, t_key, x_key)
+        if not selfconv:
+            continue
         dps = [float(r["dp"]) for r, _ in selfconv]
         diffs = [d for _, d in selfconv]
-        label = "front vs finest run (self-convergence)"
+        label = f"{what} vs finest run (self-convergence)"
         if len(selfconv) >= 2:
             label += f": order {convergence_order(dps, diffs).order:.2f}"
-        ax2.loglog(dps, diffs, "s--", color="0.3", label=label)
+        ax2.loglog(dps, diffs, "s--" if j == 0 else "D:", color="0.3", label=label)
     ax1.set_xlabel("wall time [s]")
     ax1.set_ylabel("error [-] (metre for *_m)")
     ax1.set_title(f"{name}: error against wall time")
@@ -199,7 +209,7 @@ def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: s
     for ax in (ax1, ax2):
         ax.grid(True, which="both", alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7)
+            ax.legend(fontsize=7, framealpha=0.5)  # lines behind the legend stay visible
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -304,14 +314,16 @@ def write_report(
                     " from the coarsest to the finest run"
             body.append(f"- `{k}`: p = {order.order:.2f} over {order.n_runs} runs; the error "
                         f"{trend}")
-        selfconv = self_convergence(runs)
-        if selfconv:
+        for what, t_key, x_key in SERIES:
+            selfconv = self_convergence(runs, t_key, x_key)
+            if not selfconv:
+                continue
             finest = min((r for r in runs if r.get("status") == "ok"),
                          key=lambda r: float(r["dp"]))
             parts = ", ".join(f"resolution {_fmt(r['resolution'])}: {_fmt(d)}"
                               for r, d in selfconv)
             text = (f"Self-convergence (a labelled extra, no reference data): RMS relative "
-                    f"difference of the front to the finest run's (resolution "
+                    f"difference of the {what} to the finest run's (resolution "
                     f"{_fmt(finest['resolution'])}): {parts}")
             if len(selfconv) >= 2:
                 order = convergence_order([float(r["dp"]) for r, _ in selfconv],
