@@ -88,3 +88,55 @@ def test_analyse_and_figure(ex: ModuleType, tmp_path: Path) -> None:
     path = ex.figure(result, tmp_path / "s.png")
     assert path.stat().st_size > 1000
     json.dumps(result)
+    pred = result["gauges"]["x0.30"]["predicted"]
+    assert len(pred["density"]) == len(result["gauges"]["x0.30"]["measured"]["density"])
+    assert pred["alpha"] == scene.alpha and pred["dp"] == scene.dp
+
+
+def test_kernel_gauge_factor_long_wave_limit(ex: ModuleType) -> None:
+    """The gauge smooths eta along x with the Wendland slice w(q) = (1 - q/2)^4 (2q + 1), whose
+    second moment is int q^2 w / int w = 2/7 (Beta integrals), so for kh << 1 the variance
+    factor is 1 - 2 (kh)^2 / 7; it falls towards zero for waves as short as the support."""
+    h = 0.04
+    k = np.array([0.02, 0.05, 0.1]) / h
+    deficit = 1.0 - ex.kernel_gauge_factor(k, h)
+    assert np.allclose(deficit, 2.0 * (k * h) ** 2 / 7.0, rtol=1e-2, atol=0)
+    short = ex.kernel_gauge_factor(np.array([2.0 * np.pi / (2.0 * h)]), h)  # L = 2h
+    assert short[0] < 0.1
+
+
+def test_viscous_and_evanescent_factors(ex: ModuleType) -> None:
+    k = np.array([5.0, 20.0, 45.0])
+    cg = np.array([0.6, 0.35, 0.24])
+    assert np.all(ex.viscous_factor(k, cg, 0.3, 0.0, 0.04, 14.0) == 1.0)
+    v = ex.viscous_factor(k, cg, 0.3, 0.01, 0.04, 14.0)
+    assert np.all(np.diff(v) < 0.0) and np.all(v < 1.0)  # short components lose the most
+    omega = 2.0 * np.pi * np.array([0.6, 1.1, 3.3])
+    near, mid, far = (ex.evanescent_factor(omega, x) for x in (0.0, 0.3, 2.0))
+    assert np.all(near > mid) and np.all(mid >= far) and np.all(far >= 1.0)
+    assert np.allclose(far, 1.0, atol=1e-9)  # ten depths away the modes are gone
+    # in shallow water a piston's motion is the long wave's own: almost no evanescent part
+    assert ex.evanescent_factor(np.array([2.0 * np.pi * 0.05]), 0.0)[0] < 1.0 + 1e-4
+
+
+def test_budget_without_losses_is_the_cut(ex: ModuleType) -> None:
+    """With no viscosity, a tiny kernel, a gauge far from the paddle and the record starting
+    after every component arrived, the predicted Hm0 is the synthesised components' own."""
+    b = ex.budget(1e-5, 0.0, 3.0, 1000.0, 2000.0, 1.8)
+    assert b["hm0_error"] == pytest.approx(b["cut"] - 1.0, abs=1e-6)
+    assert -0.01 < b["cut"] - 1.0 < 0.0  # the 0.5-3 fp synthesis leaves out < 1 % of Hm0
+    assert all(v["all"] == pytest.approx(1.0, abs=1e-6) for v in b["bands"].values())
+
+
+def test_replot_takes_settings_from_run_json(ex: ModuleType, tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as err:
+        ex.main(["--replot", "--dp", "0.02", "--out", str(tmp_path)])
+    assert err.value.code == 2
+    assert "--dp: not used with --replot" in capsys.readouterr().err
+    (tmp_path / "run.json").write_text(json.dumps({"dp": 0.02}), encoding="utf-8")
+    with pytest.raises(SystemExit, match="no alpha, integrator recorded"):
+        ex.main(["--replot", "--out", str(tmp_path)])
+    with pytest.raises(SystemExit) as err:
+        ex.main(["--alpha", "-1", "--budget"])
+    assert err.value.code == 2
