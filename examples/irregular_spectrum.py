@@ -12,16 +12,25 @@ wave anywhere on the flat floor is the requested one (linear theory, no dissipat
 Gauge positions: the near gauge is 1.5 depths from the paddle. The paddle also makes evanescent
 (locally standing) modes that decay like exp(-k_n x) with k_1 d between pi/2 and pi; at the peak
 frequency here k_1 d = 2.8, so at x = 1.5 d they are down to exp(-4.2) = 1.5 % of their amplitude
-at the paddle, and the gauge is still as close to the paddle as possible so that numerical
-damping over the distance travelled is small. The far gauge (about 3.5 depths further) shows
-how much the coarse SPH resolution damps the waves as they travel.
+at the paddle (at 3 fp, k_1 d nears pi/2, but the modes carry little energy there: they add
+0.1 % to that band's variance, :func:`evanescent_factor`), and the gauge is still as close to
+the paddle as possible so that numerical damping over the distance travelled is small. The far
+gauge (about 3.5 depths further) shows how much the coarse SPH resolution damps the waves as
+they travel.
+
+Numerics: flume2d's (artificial viscosity alpha = 0.003, Verlet; see :func:`flume`). The
+results also hold a loss budget per band of f/fp (:func:`budget`): the artificial viscosity's
+damping over the distance travelled, the kernel gauge's smoothing along x, the evanescent
+modes, the record start and the 0.5-3 fp cut of the synthesis, so a measured deficit can be
+told apart from what these known causes predict.
 
 Run (about 10 minutes on one core at the default dp):
 
     RAYON_NUM_THREADS=1 PYTHONPATH=python python3 examples/irregular_spectrum.py
 
-writes ``docs/irregular/{results.json,spectrum.png,records.npz}``; ``--replot`` redoes the
-analysis and the figure from ``records.npz`` without running. Units: metres, seconds.
+writes ``docs/irregular/{results.json,spectrum.png,records.npz,run.json}``; ``--replot`` redoes
+the analysis and the figure from ``records.npz`` and ``run.json`` without running; ``--budget``
+prints the predicted budget for alpha 0.01 and ``--alpha`` at ``--dp``. Units: metres, seconds.
 """
 
 from __future__ import annotations
