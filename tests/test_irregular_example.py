@@ -142,6 +142,17 @@ def test_replot_takes_settings_from_run_json(ex: ModuleType, tmp_path: Path,
     assert err.value.code == 2
 
 
+def test_dp_must_divide_the_depth(ex: ModuleType, capsys: pytest.CaptureFixture[str]) -> None:
+    """The core fills round(d / dp) layers, so dp = 0.015 would make 0.195 m of water for a
+    paddle law computed for 0.2 m: refused, with the nearest whole-layer values."""
+    with pytest.raises(SystemExit) as err:
+        ex.main(["--dp", "0.015", "--budget"])
+    assert err.value.code == 2
+    msg = capsys.readouterr().err
+    assert "--dp: the depth 0.2 m must be a whole number of dp" in msg and "0.01538462" in msg
+    assert ex.main(["--dp", "0.0153846", "--budget"]) == 0
+
+
 def test_gauge_sampling_does_not_bias_hm0(ex: ModuleType) -> None:
     """The core samples a gauge at the first step past each sample time (Tp / 40) and
     FlumeGauges.uniform resamples linearly onto the nominal grid; with the run's time step
