@@ -44,7 +44,6 @@ struct Scratch {
     /// `r_ab` by component (x, y, z; z unused in 2D).
     r: [[Real; SCAN_ROOM]; 3],
     r2: [Real; SCAN_ROOM],
-    mask: [Real; BATCH],
     vb: [[Real; BATCH]; 3],
     rhob: [Real; BATCH],
     /// Pressure of each neighbour.
@@ -66,7 +65,6 @@ impl Scratch {
             idx: [0; SCAN_ROOM],
             r: [room; 3],
             r2: room,
-            mask: z,
             vb: [z; 3],
             rhob: z,
             pb: z,
@@ -116,33 +114,29 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
     if n == 0 {
         return;
     }
+    let support2 = c.support * c.support;
     let n_pad = n.div_ceil(LANES) * LANES;
-    // Pairs at r = 0 (the particle itself, or a coincident one) carry no force: masked, and
-    // moved to the support radius so that no term divides by zero.
-    for k in 0..n {
-        let at_zero = s.r2[k] == 0.0;
-        s.mask[k] = if at_zero { 0.0 } else { 1.0 };
-        s.r[0][k] = if at_zero { c.support } else { s.r[0][k] };
-        s.r2[k] = if at_zero { c.support * c.support } else { s.r2[k] };
-    }
+    // Padding: the particle itself at r = 0, masked in the arithmetic loop.
     for k in n..n_pad {
         s.idx[k] = own.slot as u32;
-        s.r[0][k] = c.support;
-        s.r[1][k] = 0.0;
-        s.r[2][k] = 0.0;
-        s.r2[k] = c.support * c.support;
-        s.mask[k] = 0.0;
+        for d in 0..3 {
+            s.r[d][k] = 0.0;
+        }
+        s.r2[k] = 0.0;
     }
     // Gather: the only indexed loads. With gamma = 7 (T7) pressure and sound speed are
     // computed in the arithmetic loop, vectorised; another gamma needs powf, done here so that
     // it does not keep that loop from vectorising.
+    debug_assert!(s.idx[..n_pad].iter().all(|&b| (b as usize) < f.vel.len().min(f.rho.len())));
     for k in 0..n_pad {
         let b = s.idx[k] as usize;
-        let v = f.vel[b];
+        // SAFETY: every index comes from the candidate scan over the position array (or is
+        // the particle itself), and the field arrays are as long as it (`Fields`).
+        let (v, rhob) = unsafe { (*f.vel.get_unchecked(b), *f.rho.get_unchecked(b)) };
         for d in 0..D::DIM {
             s.vb[d][k] = v.get(d);
         }
-        s.rhob[k] = f.rho[b];
+        s.rhob[k] = rhob;
         if !T7 {
             s.pb[k] = pressure(c, s.rhob[k]);
             if VISC == VISC_ARTIFICIAL {
@@ -156,7 +150,11 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
     for k in 0..n_pad {
         let (rx, ry) = (s.r[0][k], s.r[1][k]);
         let rz = if three { s.r[2][k] } else { 0.0 };
-        let r2 = s.r2[k];
+        // Pairs at r = 0 (the particle itself, padding, or a coincident particle) carry no
+        // force: masked, and moved to the support radius so that no term divides by zero.
+        let at_zero = s.r2[k] == 0.0;
+        let mask = if at_zero { 0.0 } else { 1.0 };
+        let r2 = if at_zero { support2 } else { s.r2[k] };
         let rhob = s.rhob[k];
         // Tait with gamma = 7 (eos.rs), x = rho_b / rho0 taken as rho_b * (1 / rho0)
         let (pb, cb) = if T7 {
@@ -177,7 +175,7 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
             kernel.grad_factor_inv_r(dist, r2e * rhob * sum_rho * inv_all)
         } else {
             kernel.grad_factor(dist)
-        } * s.mask[k];
+        } * mask;
         let (gx, gy, gz) = (rx * fk, ry * fk, rz * fk);
         let (vx, vy) = (own.vel[0] - s.vb[0][k], own.vel[1] - s.vb[1][k]);
         let vz = if three { own.vel[2] - s.vb[2][k] } else { 0.0 };
@@ -209,21 +207,30 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         }
     }
 
-    // Lane sums: pair k goes to lane k % LANES.
+    // Lane sums: pair k goes to lane k % LANES (one array at a time, each a vector add).
+    lane_add(&mut sums.drho, &s.out_drho[..n_pad]);
+    for d in 0..D::DIM {
+        lane_add(&mut sums.acc[d], &s.out_acc[d][..n_pad]);
+    }
+    if DIFF != DIFF_NONE && fluid {
+        lane_add(&mut sums.diff, &s.out_diff[..n_pad]);
+    }
     for k0 in (0..n_pad).step_by(LANES) {
         for l in 0..LANES {
-            let k = k0 + l;
-            for d in 0..D::DIM {
-                sums.acc[d][l] += s.out_acc[d][k];
-            }
-            sums.drho[l] += s.out_drho[k];
-            if DIFF != DIFF_NONE && fluid {
-                sums.diff[l] += s.out_diff[k];
-            }
-            sums.visc[l] = sums.visc[l].max(s.out_visc[k]);
+            sums.visc[l] = sums.visc[l].max(s.out_visc[k0 + l]);
         }
     }
     s.n = 0;
+}
+
+/// Adds `terms[k]` to lane `k % LANES` (`terms.len()` is a multiple of `LANES`).
+#[inline(always)]
+fn lane_add(lanes: &mut [Real; LANES], terms: &[Real]) {
+    for chunk in terms.chunks_exact(LANES) {
+        for l in 0..LANES {
+            lanes[l] += chunk[l];
+        }
+    }
 }
 
 /// `((s0 + s1) + (s2 + s3))`: the fixed order in which lanes are added.
