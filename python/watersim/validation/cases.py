@@ -213,7 +213,8 @@ class Case:
         description: one line.
         reference: where the reference comes from.
         resolution_meaning: what the resolution counts, e.g. ``"column width / dp"``.
-        length: the characteristic length [m]: ``dp = length / resolution``.
+        length: the characteristic length [m]: ``dp = length / resolution`` (snapped for the
+            wave flumes, see ``depth``).
         resolutions: the full sweep's resolutions.
         quick_resolutions: the ``--quick`` sweep's resolutions.
         primary: the metric the accuracy target applies to.
