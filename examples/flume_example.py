@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 import time
@@ -25,6 +26,7 @@ import numpy.typing as npt
 
 import watersim as ws
 from watersim import analysis as an
+from watersim.flume import lattice_dp, lattice_layers
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -36,13 +38,23 @@ __all__ = ["Records", "parse_args", "pyplot", "run_flume", "save"]
 
 
 def parse_args(
-    argv: Sequence[str] | None, description: str, dp: float, periods: float, out: str
+    argv: Sequence[str] | None, description: str, dp: float, periods: float, out: str,
+    depth: float | None = None,
 ) -> argparse.Namespace:
     """``--dp`` [m], ``--periods`` (simulated time in wave periods), ``--out DIR``,
-    ``--replot``; bad values exit with code 2 and a message naming the option."""
+    ``--replot``; bad values exit with code 2 and a message naming the option.
+
+    With the flume's still-water ``depth`` [m], the default ``dp`` is snapped to
+    ``depth / round(depth / dp)`` (:func:`watersim.flume.lattice_dp`: the core fills the water
+    with whole particle layers) and a ``--dp`` that is not a whole fraction of the depth is
+    refused with two that are."""
+    if depth is not None:
+        dp = lattice_dp(depth, dp)
     p = argparse.ArgumentParser(description=description)
     p.add_argument("--dp", type=float, default=dp,
-                   help=f"particle spacing [m] (default {dp:g}: coarse, a few minutes)")
+                   help=f"particle spacing [m] (default {dp:.6g}: coarse, a few minutes"
+                        + ("" if depth is None else f"; must divide the depth {depth:g} m")
+                        + ")")
     p.add_argument("--periods", type=float, default=periods,
                    help=f"simulated time in wave periods (default {periods:g})")
     p.add_argument("--out", default=out, help=f"output folder (default {out})")
@@ -52,6 +64,12 @@ def parse_args(
     args = p.parse_args(argv)
     if not (np.isfinite(args.dp) and args.dp > 0):
         p.error(f"--dp: must be a positive number of metres, got {args.dp!r}")
+    if depth is not None and lattice_dp(depth, args.dp) != args.dp:
+        n = depth / args.dp
+        lo, hi = max(math.floor(n), 2), max(math.ceil(n), 3)
+        p.error(f"--dp: the depth {depth:g} m is {n:.4g} dp; the particle lattice fills whole "
+                f"layers, so the water would be {lattice_layers(depth, args.dp) * args.dp:.4g} m "
+                f"deep; use --dp {depth / lo:.8g} ({lo} layers) or {depth / hi:.8g} ({hi} layers)")
     if not (np.isfinite(args.periods) and args.periods > 0):
         p.error(f"--periods: must be a positive number, got {args.periods!r}")
     return args

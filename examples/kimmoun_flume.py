@@ -3,7 +3,7 @@ at a resolution a laptop runs in a few minutes, with the figures of seed 001 Fig
 and 10.
 
     PYTHONPATH=python RAYON_NUM_THREADS=2 python3 examples/kimmoun_flume.py --out runs/kimmoun
-    python3 examples/kimmoun_flume.py --dp 0.02 --periods 40 --out runs/kimmoun-fine
+    python3 examples/kimmoun_flume.py --dp 0.020142857 --periods 40 --out runs/kimmoun-fine
     python3 examples/kimmoun_flume.py --out runs/kimmoun --replot   # figures only
 
 The flume is the built-in case ``kimmoun2d`` written out with the public API, plus velocity
@@ -329,7 +329,8 @@ def figures(scene: ws.FlumeScene, records: Records, analysis: dict[str, Any],
 
 def main(argv: Sequence[str] | None = None) -> list[Path]:
     """Run the example (see the module docstring); returns the figures written."""
-    args = parse_args(argv, __doc__.splitlines()[0], dp=0.05, periods=20.0, out="runs/kimmoun")
+    args = parse_args(argv, __doc__.splitlines()[0], dp=0.05, periods=20.0, out="runs/kimmoun",
+                      depth=DEPTH)
     return run_flume(args, make, figures)
 
 

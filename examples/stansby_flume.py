@@ -90,7 +90,8 @@ def figures(scene: ws.FlumeScene, records: Records, analysis: dict[str, Any],
 
 def main(argv: Sequence[str] | None = None) -> list[Path]:
     """Run the example (see the module docstring); returns the figures written."""
-    args = parse_args(argv, __doc__.splitlines()[0], dp=0.03, periods=10.0, out="runs/stansby")
+    args = parse_args(argv, __doc__.splitlines()[0], dp=0.03, periods=10.0, out="runs/stansby",
+                      depth=DEPTH)
     return run_flume(args, make, figures)
 
 

@@ -18,7 +18,7 @@ import pytest
 
 import watersim as ws
 from watersim import wave_theory as wt
-from watersim.flume import FlumeGauges, analyse_flume
+from watersim.flume import FlumeGauges, analyse_flume, lattice_dp
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -71,7 +71,7 @@ def test_example_figures_from_a_synthetic_record(name: str, tmp_path: Path) -> N
     mod = _load(name)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", wt.WaveValidityWarning)  # stansby: Ursell number 45
-        flume, kwargs = mod.make(0.05, 30.0)
+        flume, kwargs = mod.make(lattice_dp(mod.DEPTH, 0.05), 30.0)  # whole layers
         scene = flume.scene(**kwargs)
     gauges = FlumeGauges(scene, _synthetic_records(scene, mod.HEIGHT, mod.PERIOD))
     analysis = analyse_flume(scene, gauges)
@@ -91,11 +91,11 @@ def test_example_figures_from_a_synthetic_record(name: str, tmp_path: Path) -> N
 
 
 def test_kimmoun_script_runs_end_to_end_and_replots(tmp_path: Path) -> None:
-    """A one-period run at dp = 0.15 m: every figure is written even
+    """A one-period run at dp = 0.141 m (0.705 / 5): every figure is written even
     though no wave reaches the beach (they say so), and ``--replot`` redraws them."""
     mod = _load("kimmoun_flume")
     out = tmp_path / "run"
-    written = mod.main(["--dp", "0.15", "--periods", "1.0", "--out", str(out)])
+    written = mod.main(["--dp", "0.141", "--periods", "1.0", "--out", str(out)])
     names = {p.name for p in written}
     assert names == {"fig4_toe.png", "fig5_breaking_gauges.png", "fig8_envelopes.png",
                      "fig9_runup.png", "fig10_phase_averages.png"}
@@ -103,7 +103,7 @@ def test_kimmoun_script_runs_end_to_end_and_replots(tmp_path: Path) -> None:
         assert (out / f).is_file(), f
     for p in written:
         p.unlink()
-    again = mod.main(["--dp", "0.15", "--periods", "1.0", "--out", str(out), "--replot"])
+    again = mod.main(["--dp", "0.141", "--periods", "1.0", "--out", str(out), "--replot"])
     assert all(p.is_file() for p in again) and len(again) == 5
 
 
@@ -113,3 +113,9 @@ def test_bad_options_are_refused(capsys: pytest.CaptureFixture[str]) -> None:
         mod.main(["--dp", "-1"])
     assert exc.value.code == 2
     assert "--dp" in capsys.readouterr().err
+    # a dp that does not divide the depth (0.34 m is 11.3 dp of 0.03 m) is refused with two
+    with pytest.raises(SystemExit) as exc:
+        mod.main(["--dp", "0.03"])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "--dp: the depth 0.34 m is 11.33 dp" in err and "0.030909091 (11 layers)" in err

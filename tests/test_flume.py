@@ -132,7 +132,7 @@ def test_wave_breaking_at_the_paddle_is_a_warning_not_an_error() -> None:
 def test_wave_beyond_second_order_warns() -> None:
     with pytest.warns(wt.WaveValidityWarning) as record:
         ws.Flume(length=11.0, depth=0.34).scene(
-            ws.RegularWave(height=0.105, period=2.42), paddle=ws.Piston(order=2), dp=0.03
+            ws.RegularWave(height=0.105, period=2.42), paddle=ws.Piston(order=2), dp=0.034
         )
     assert any("Ursell" in str(w.message) for w in record)
 
@@ -179,7 +179,7 @@ def test_the_law_reproduces_wave_theorys_motion() -> None:
 
 
 def test_tank_and_paddle_are_aligned_on_the_lattice() -> None:
-    for dp in (0.02, 0.03, 0.0175):
+    for dp in (0.02, 0.03, 0.3 / 17):  # dp must divide the depth (0.3 m): 15, 10, 17 layers
         sc = scene(dp=dp, paddle=ws.Piston(order=2))
         js = sc.to_scene()
         x_back = js["tank"]["min"][0]
@@ -200,7 +200,7 @@ def test_tank_and_paddle_are_aligned_on_the_lattice() -> None:
 def test_plane_beach_profile_and_damping_defaults() -> None:
     beach = ws.PlaneBeach(toe=4.0, slope=1 / 15)
     sc = ws.Flume(length=17.0, depth=0.705, beach=beach).scene(
-        ws.RegularWave(height=0.114, period=1.275), dp=0.05
+        ws.RegularWave(height=0.114, period=1.275), dp=0.705 / 14
     )
     js = sc.to_scene()
     (obstacle,) = js["obstacles"]

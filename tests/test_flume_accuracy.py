@@ -113,7 +113,7 @@ def test_secondorder_wave_is_the_documented_one() -> None:
     5.4 mm below H/8, beat length 1.86 L; flume2d's H = 0.1 m wave is 4.2 % longer by Stokes 3."""
     from watersim.validation.cases import FLUME2D_HEIGHT, SECOND_ORDER_WAVE, secondorder_scene
 
-    first, second = secondorder_scene(0.03, 1), secondorder_scene(0.03, 2)
+    first, second = secondorder_scene(0.025, 1), secondorder_scene(0.025, 2)  # 8 layers
     assert first.law.second_order_amplitude == 0.0
     assert second.law.second_order_amplitude == pytest.approx(0.0020, abs=5e-5)
     assert second.law.stroke == pytest.approx(0.066, abs=5e-4)

@@ -95,6 +95,8 @@ __all__ = [
     "analyse_flume",
     "elevation_gauges_between",
     "flap_height_to_stroke_hinged",
+    "lattice_dp",
+    "lattice_layers",
 ]
 
 SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
@@ -121,9 +123,75 @@ SOLITARY_MAX_H_OVER_D = 0.83
 """Highest solitary wave, H/d about 0.83 (Longuet-Higgins & Fenton 1974): a taller one does not
 exist, and Goring's paddle motion for it is meaningless."""
 
+LATTICE_RTOL = 1e-6
+"""Relative tolerance within which ``depth / dp`` (and a 3D flume's ``width / dp``) counts as a
+whole number: the core then fills exactly that many layers (see :func:`lattice_layers`)."""
+
 MAX_PARTICLES = 1e10
 """Fluid particle count past which a flume is refused before anything is derived from dp (far
 beyond any machine's memory; the core's estimate then refuses what does not fit this one)."""
+
+
+# ------------------------------------------------------------------------------------------------
+# the particle lattice
+
+
+def lattice_layers(extent: float, dp: float) -> int:
+    """Number of fluid layers the core puts in ``[0, extent]`` [m] at spacing ``dp`` [m].
+
+    The core (crates/sph-core/src/geometry.rs, ``sample``) places particles at ``(i + 1/2) dp``
+    from the tank's inner corner and keeps those strictly inside a fluid box, so a still-water
+    depth (or a 3D flume's width) holds the whole layers whose centres lie below it: about
+    ``round(extent / dp)`` (a half rounds down), computed here with the core's own floating-point
+    expression. The water it makes is ``lattice_layers(extent, dp) * dp`` deep (wide).
+    """
+    n = max(math.floor(extent / dp - 0.5) - 1, 0)
+    while (n + 0.5) * dp < extent:
+        n += 1
+    return n
+
+
+def _whole(extent: float, dp: float) -> bool:
+    """Whether ``extent / dp`` is a whole number within :data:`LATTICE_RTOL`."""
+    q = extent / dp
+    return abs(q - round(q)) <= LATTICE_RTOL * q
+
+
+def lattice_dp(depth: float, dp: float, width: float | None = None) -> float:
+    """The spacing [m] nearest ``dp`` [m] that makes ``depth`` [m] a whole number of layers:
+    ``dp`` itself when it already is one, else ``depth / n`` with ``n = round(depth / dp)`` (at
+    least 2), so the core fills exactly the depth asked for (:func:`lattice_layers`).
+
+    With a 3D flume's ``width`` [m], the smallest ``n`` from ``round(depth / dp)`` up to twice
+    that for which the width is also a whole number of ``depth / n``; when none is, the depth's
+    ``n`` (the flume then refuses the width, naming it).
+    """
+    if _whole(depth, dp) and (width is None or _whole(width, dp)):
+        return dp  # already whole: keep it as given (0.025, not 0.3 / 12 = 0.024999...)
+    n0 = max(round(depth / dp), 2)
+    if width is not None:
+        for n in range(n0, 2 * n0 + 1):
+            if _whole(width, depth / n):
+                return depth / n
+    return depth / n0
+
+
+def _lattice_error(field: str, what: str, extent: float, dp: float, unit: str) -> str:
+    """The refusal of an ``extent`` [m] that is not a whole number of dp (see
+    :meth:`FlumeScene._check_lattice`)."""
+    q = extent / dp
+    filled = lattice_layers(extent, dp) * dp
+    lo, hi = math.floor(q), math.ceil(q)
+    if field == "dp":
+        fix = (f"use dp = {extent / lo:.8g} ({lo} {unit}) or {extent / hi:.8g} ({hi} {unit}), "
+               f"or a {what.split()[-1]} that is a whole number of dp")
+    else:
+        fix = (f"use a {field} of {lo * dp:.6g} m ({lo} dp) or {hi * dp:.6g} m ({hi} dp), or a "
+               "dp that divides both the depth and the width")
+    n = lattice_layers(extent, dp)
+    return (f"{field}: the {what} {extent:.6g} m is {q:.6g} dp (dp = {dp:.6g} m); the particle "
+            f"lattice fills whole {unit}, so the water would be {filled:.6g} m "
+            f"{'deep' if field == 'dp' else 'wide'} ({n} {unit}); {fix}")
 
 
 # ------------------------------------------------------------------------------------------------
@@ -936,7 +1004,10 @@ class FlumeScene(SceneBuilder):
     Build it with :meth:`Flume.scene` (or :meth:`Flume.simulation`, which also builds the
     particles). ``dim`` follows the flume (3 with a width). Defaults filled in when the scene is
     created: ``dp = min(depth / 15, H / 4)`` (H the wave's height, ``1.8 hs`` for irregular
-    waves; depth / 15 for a tabulated motion), ``sample_interval = T / 40`` (at most 0.05 s;
+    waves; depth / 15 for a tabulated motion; in 3D at most 8 layers deep), snapped to
+    ``depth / round(depth / dp)`` so that the water is a whole number of particle layers deep
+    (:func:`lattice_dp`; a given ``dp`` that is not is refused, see :meth:`_check_lattice`),
+    ``sample_interval = T / 40`` (at most 0.05 s;
     ``sqrt(depth / g) / 4`` for solitary waves, 0.02 s for a tabulated motion), ``until`` long
     enough for the wave to reach the last gauge (or the shoreline) after the ramp and ten more
     periods there (for irregular waves fifty peak periods, for a solitary wave the time to cross
@@ -1085,6 +1156,7 @@ class FlumeScene(SceneBuilder):
             )
         if flume.length < 4.0 * dp:
             raise SceneError(f"dp: {dp:g} m is too coarse for a flume {flume.length:g} m long")
+        self._check_lattice()
         across = 1.0 if flume.width is None else flume.width / dp
         n_fluid = flume.length / dp * flume.depth / dp * across
         if not n_fluid <= MAX_PARTICLES:
@@ -1136,6 +1208,25 @@ class FlumeScene(SceneBuilder):
                 "runup: the bed does not reach the still-water level, so there is no slope to "
                 "lay a run-up gauge on; give a RunupGauge(start, end) or runup=False"
             )
+
+    def _check_lattice(self) -> None:
+        """The water must be as deep (and, in 3D, as wide) as asked.
+
+        The core fills the fluid box with whole lattice layers (:func:`lattice_layers`): a depth
+        of 70.5 dp becomes 70 dp of water, and the paddle law, the wave-theory targets and the
+        gauge zeroing, all computed for the depth asked, would then be wrong (measured: kimmoun2d
+        at dp 0.05 filled 0.700 m instead of 0.705). Only the still-water depth at the paddle
+        matters (the bed is flat there, z = 0; a beach or mesh cutting the water further on does
+        not change it). Across a 3D flume the lattice also fills whole columns between the side
+        walls at y = 0 and y = width (a width of 12.5 dp holds 12 dp of water beside an empty
+        lattice row, 12.6 dp holds 13 dp of water pressed against the wall), so the width must
+        be a whole number of dp too.
+        """
+        flume, dp = self.flume, float(self.dp)  # type: ignore[arg-type]
+        if not _whole(flume.depth, dp):
+            raise SceneError(_lattice_error("dp", "water depth", flume.depth, dp, "layers"))
+        if flume.width is not None and not _whole(flume.width, dp):
+            raise SceneError(_lattice_error("width", "flume width", flume.width, dp, "columns"))
 
     def _mesh_in_reach(self, reach: float) -> bool:
         """Whether a mesh beach rises above the floor at x < ``reach`` anywhere across the
@@ -1450,7 +1541,8 @@ class FlumeScene(SceneBuilder):
         dp = depth / 15.0 if h is None else min(depth / 15.0, h / 4.0)
         if self.flume.dim == 3:
             dp = max(dp, depth / 8.0)
-        return float(f"{dp:.3g}")
+        # a whole number of layers, so the water is as deep (and wide) as asked
+        return lattice_dp(depth, dp, self.flume.width)
 
     def _default_sample_interval(self) -> float:
         wave = self.wave

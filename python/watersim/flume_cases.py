@@ -15,6 +15,12 @@ the paddle depth d: ten times the shallow-water wave speed, density variations a
 rho0; Monaghan's rule c0 >= 10 |v|max holds for non-breaking waves and, from the deeper paddle
 depth, for the breakers of kimmoun2d and stansby2d too), which halves the number of steps
 against the library default of 20. Refine with ``--set dp=...`` (and ``coefsound=20``).
+
+Each case's default dp is a nominal spacing snapped to ``depth / round(depth / dp)``
+(:func:`~watersim.flume.lattice_dp`, also after ``--set flume.depth=...``): the core fills the
+water with whole particle layers, so only such a dp gives the depth asked for. A dp set with
+``--set dp=...`` must divide the depth (and a 3D flume's width) too, or the case is refused with
+two dp that do.
 """
 
 from __future__ import annotations
@@ -43,6 +49,7 @@ from .flume import (
     RegularWave,
     SolitaryWave,
     elevation_gauges_between,
+    lattice_dp,
 )
 from .scenes import SceneBuilder, _positive
 
@@ -189,8 +196,8 @@ def case_flume2d(s: _Settings) -> FlumeScene:
 
     d = 0.3 m, T = 1.2 s (L = 1.77 m, kd = 1.06), H = 0.05 m, second-order piston with a
     two-period ramp; flume 4.75 L long with a 1.5 L damping zone; gauges at 1, 2 and 3 L plus a
-    Mansard-Funke triplet from 1.5 L for the reflection coefficient. dp = 0.025 m (H/dp = 2,
-    about 6,000 particles), until = ramp + arrival at 3 L + 4 periods (about 12 s).
+    Mansard-Funke triplet from 1.5 L for the reflection coefficient. dp = 0.025 m (12 layers,
+    H/dp = 2, about 6,000 particles), until = ramp + arrival at 3 L + 4 periods (about 12 s).
 
     Numerics for a non-breaking wave carried over several wavelengths (docs/wave-flume.md,
     "How far WaterSim carries a wave"): ``alpha = 0.003`` instead of the flume default 0.01,
@@ -208,7 +215,8 @@ def case_flume2d(s: _Settings) -> FlumeScene:
     flume = Flume(length=length, depth=depth, damping=damping)
     gauges = [ElevationGauge(round(n * wl, 3)) for n in (1, 2, 3)]
     gauges += _reflection_triplet(1.5 * wl, wl)
-    num = s.numerics(dp=0.025, coefsound=10.0, alpha=FLUME2D_ALPHA, integrator="verlet")
+    num = s.numerics(dp=lattice_dp(depth, 0.025), coefsound=10.0, alpha=FLUME2D_ALPHA,
+                     integrator="verlet")
     return _finish(s, 4.0, 3.0 * wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
 
@@ -222,7 +230,9 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     splash-up, roller); a line every 0.5 m from 8 to 14.5 m for the envelopes and the breaking
     position; a Mansard-Funke triplet from 1.5 m; and the run-up gauge on the slope. The
     elevation gauges use seed 001's method (the highest particle). The six gauges 18 cm apart
-    of the experiment are not placed: the seed does not give where they were. dp = 0.05 m (H/dp = 2.3, about 4,500 particles), until = 20 periods (25.5 s).
+    of the experiment are not placed: the seed does not give where they were. dp = 0.705 / 14 =
+    0.050357 m (14 layers; nominal 0.05 m, H/dp = 2.3, about 5,700 particles, 2,500 fluid),
+    until = 20 periods (25.5 s).
     """
     wave = s.apply("wave", RegularWave(height=0.114, period=1.275))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
@@ -240,7 +250,7 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     # over the upper slope, a few particles deep at coarse dp, which the kernel method reads
     # as dry)
     gauges = [dataclasses.replace(g, method="particle") for g in _unique_positions(gauges)]
-    num = s.numerics(dp=0.05, coefsound=10.0, until=round(20 * wave.period, 3))
+    num = s.numerics(dp=lattice_dp(depth, 0.05), coefsound=10.0, until=round(20 * wave.period, 3))
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
@@ -265,7 +275,8 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     The seed does not give where the slope starts: ``beach.toe`` = 2.0 m is an estimate that puts
     depth-limited breaking (Green's-law shoaling, H/d = 0.78, d_b about 0.16 m) at the seed's
     incipient-breaking gauges 8-10 (x = 5.5-5.7 m); set it if you know better.
-    dp = 0.03 m (H/dp = 3.5, about 3,500 particles), until = 10 periods (24.2 s).
+    dp = 0.34 / 11 = 0.030909 m (11 layers; nominal 0.03 m, H/dp = 3.4, about 5,200 particles,
+    1,800 fluid), until = 10 periods (24.2 s).
     """
     wave = s.apply("wave", RegularWave(height=0.105, period=2.42))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
@@ -275,7 +286,7 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     flume = Flume(length=length, depth=depth, beach=beach)
     gauges = [ElevationGauge(x, method="particle") for x in STANSBY_GAUGES]
     gauges += [ElevationGauge(0.8, method="particle"), ElevationGauge(1.8, method="particle")]
-    num = s.numerics(dp=0.03, coefsound=10.0, until=round(10 * wave.period, 3))
+    num = s.numerics(dp=lattice_dp(depth, 0.03), coefsound=10.0, until=round(10 * wave.period, 3))
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
@@ -293,9 +304,9 @@ def case_bar2d(s: _Settings) -> FlumeScene:
     the bar of :func:`beji_battjes_profile`, gauges at the eleven measured positions
     (:data:`BEJI_BATTJES_GAUGES`), flume 21.5 m + one wavelength of damping zone.
     analysis.json compares the first three harmonic amplitudes at each gauge with the
-    measured records (``beji_battjes``). The default dp = 0.04 m is far too coarse for a 2 cm
-    wave (H/dp = 0.5: the wave is numerically damped); it only shows the case runs, in about
-    three minutes. H/dp >= 5 (dp = 0.004 m) is what a comparison needs.
+    measured records (``beji_battjes``). The default dp = 0.04 m (10 layers) is far too coarse
+    for a 2 cm wave (H/dp = 0.5: the wave is numerically damped); it only shows the case runs,
+    in about three minutes. H/dp >= 5 (dp = 0.004 m) is what a comparison needs.
     until = ramp + arrival at 21 m + 3 periods (about 25 s).
     """
     wave = s.apply("wave", RegularWave(height=0.02, period=2.02))
@@ -306,7 +317,7 @@ def case_bar2d(s: _Settings) -> FlumeScene:
     damping = s.apply("damping", DampingZone(length=round(wl, 2)))
     flume = Flume(length=length, depth=depth, beach=beji_battjes_profile(), damping=damping)
     gauges = [ElevationGauge(x) for x in BEJI_BATTJES_GAUGES if x <= length]
-    num = s.numerics(dp=0.04, coefsound=10.0)
+    num = s.numerics(dp=lattice_dp(depth, 0.04), coefsound=10.0)
     return _finish(s, 3.0, max(g.x for g in gauges), flume=flume, wave=wave, paddle=paddle,
                    gauges=gauges, runup=False, **num)
 
@@ -318,7 +329,7 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
     H/d = 0.3), Goring piston motion; beach toe 4 m from the paddle (shoreline at 9.955 m),
     flume 16 m; gauges at 2, 4 (toe), 6, 8 and 9.5 m and the run-up gauge. analysis.json adds
     Synolakis's non-breaking run-up law for reference (it over-predicts a breaking wave's
-    run-up). dp = 0.03 m (H/dp = 3, about 4,500 particles), until = 14 s.
+    run-up). dp = 0.03 m (10 layers, H/dp = 3, about 4,500 particles), until = 14 s.
     """
     wave = s.apply("wave", SolitaryWave(height=0.09))
     paddle = s.apply("paddle", Piston(order=1, ramp_periods=0.0))
@@ -327,14 +338,14 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
     length = s.value("flume.length", 16.0)
     flume = Flume(length=length, depth=depth, beach=beach)
     gauges = [ElevationGauge(x) for x in (2.0, 4.0, 6.0, 8.0, 9.5) if x <= length]
-    num = s.numerics(dp=0.03, coefsound=10.0, until=14.0)
+    num = s.numerics(dp=lattice_dp(depth, 0.03), coefsound=10.0, until=14.0)
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
 def case_flume3d(s: _Settings) -> FlumeScene:
     """A narrow, coarse 3D flume with a piston: the wave-maker in 3D.
 
-    d = 0.2 m, width 0.24 m (eight particles across), T = 1.0 s (L = 1.21 m), H = 0.05 m,
+    d = 0.2 m, width 0.2 m (seven particles across), T = 1.0 s (L = 1.21 m), H = 0.05 m,
     second-order piston with a one-period ramp; flume 1.8 L long with a 0.55 L damping zone,
     walls 0.27 m high; gauges at 0.5 L on the centre line and at 1 L at y = 1/4, 1/2 and 3/4 of
     the width (the wave should stay long-crested), taking the highest particle (the kernel
@@ -343,18 +354,20 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     artificial viscosity: at this h, alpha = 0.01 acts like nu ~ alpha h c0 / 10 ~ 9e-4 m^2/s,
     and the boundary layers of the side walls and floor of a channel this narrow then damp the
     wave (Hunt 1952: about 30 % per wavelength, against 1 % with water's viscosity); measured,
-    the wave at 1 L gains 8-12 % of H. dp = 0.03 m (H/dp = 1.7, about 21,400 particles, four
-    fifths of them walls), until = ramp + arrival at L + 5 periods (7.3 s: three waves
-    analysed at 1 L). analysis.json's ``across_width`` gives the spread across the width of the
-    zero-crossing heights and of the first-harmonic heights ``2 a1`` (:func:`across_width`);
-    with the particle method the zero-crossing heights on the centre line take stray
-    particles, the first harmonic does not. Measured results and what they miss in
+    the wave at 1 L gains 8-12 % of H (measured before 2026-11-30 with dp = 0.03 m and width
+    0.24 m, which filled 0.21 m of water). dp = 0.2 / 7 = 0.028571 m (7 layers deep and 7
+    columns across; nominal 0.03 m, H/dp = 1.75; about 21,000 particles, 3,700 of them fluid),
+    until = ramp + arrival at L + 5 periods (7.3 s: three waves analysed at 1 L).
+    analysis.json's ``across_width`` gives the spread across the width of the zero-crossing
+    heights and of the first-harmonic heights ``2 a1`` (:func:`across_width`); with the particle
+    method the zero-crossing heights on the centre line take stray particles, the first harmonic
+    does not. Measured results and what they miss in
     docs/wave-flume.md.
     """
     wave = s.apply("wave", RegularWave(height=0.05, period=1.0))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=1.0))
     depth = s.value("flume.depth", 0.2)
-    width = s.value("flume.width", 0.24)
+    width = s.value("flume.width", 0.2)
     height = s.value("flume.height", 0.27)
     wl = float(wt.wavelength(wave.period, depth))
     length = s.value("flume.length", round(1.8 * wl, 2))
@@ -364,7 +377,8 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid, method="particle")]
     gauges += [ElevationGauge(round(wl, 3), y=round(f * width, 4), method="particle")
                for f in (0.25, 0.5, 0.75)]
-    num = s.numerics(dp=0.03, coefsound=10.0, viscosity="laminar", nu=1e-6)
+    num = s.numerics(dp=lattice_dp(depth, 0.03, width), coefsound=10.0, viscosity="laminar",
+                     nu=1e-6)
     return _finish(s, 5.0, wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
 

@@ -5,9 +5,11 @@ A case's ``run(resolution, quick=False, progress=False)`` returns a run record (
 dict, see :func:`make_record`). ``resolution`` is a number of particles per characteristic
 length of the case (``Case.resolution_meaning``: the column width over dp for dam breaks, the
 wave height over dp for waves, the depth over dp for the still tank), so ``dp = length /
-resolution``. ``quick`` shortens the simulated time where the metric allows it (tank2d,
-the dam breaks, standing2d, bar2d, kimmoun2d); flume2d, secondorder2d and solitary2d keep theirs,
-already the shortest their metrics need, and run only at their coarse quick resolution.
+resolution`` (for the wave flumes snapped to ``depth / round(depth / dp)``, a whole number of
+particle layers: :meth:`Case.dp`). ``quick`` shortens the simulated time where the metric allows
+it (tank2d, the dam breaks, standing2d, bar2d, kimmoun2d); flume2d, secondorder2d and solitary2d
+keep theirs, already the shortest their metrics need, and run only at their coarse quick
+resolution.
 
 References (see ``watersim/data/SOURCES.md``): Martin & Moyce (1952) dam-break front; linear
 theory and Stokes third-order dispersion; Beji & Battjes (1993) bar records; Synolakis (1987)
@@ -37,6 +39,7 @@ from ..flume import (
     FlumeSimulation,
     Piston,
     RegularWave,
+    lattice_dp,
 )
 from ..flume_cases import BEJI_BATTJES_FILES, FLUME2D_ALPHA, _load_csv, flume_builder
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
@@ -210,7 +213,8 @@ class Case:
         description: one line.
         reference: where the reference comes from.
         resolution_meaning: what the resolution counts, e.g. ``"column width / dp"``.
-        length: the characteristic length [m]: ``dp = length / resolution``.
+        length: the characteristic length [m]: ``dp = length / resolution`` (snapped for the
+            wave flumes, see ``depth``).
         resolutions: the full sweep's resolutions.
         quick_resolutions: the ``--quick`` sweep's resolutions.
         primary: the metric the accuracy target applies to.
@@ -219,6 +223,8 @@ class Case:
         runner: ``runner(case, resolution, quick, progress) -> record``.
         report_note: what the report should say about the case's metrics.
         report_details: keys of the records' ``details`` the report tabulates.
+        depth: a wave flume's still-water depth [m], which dp must divide (:meth:`dp`); ``None``
+            for the other cases.
     """
 
     name: str
@@ -234,10 +240,16 @@ class Case:
     runner: Callable[[Case, float, bool, bool], dict[str, Any]]
     report_note: str = ""
     report_details: tuple[str, ...] = ()
+    depth: float | None = None
 
     def dp(self, resolution: float) -> float:
-        """Particle spacing [m] of a resolution."""
-        return self.length / resolution
+        """Particle spacing [m] of a resolution: ``length / resolution``, for a wave flume
+        snapped to ``depth / round(depth / dp)`` (:func:`~watersim.flume.lattice_dp`): the core
+        fills the water with whole particle layers, so only such a dp gives the flume the depth
+        its wave theory and paddle law are computed for (the resolution is then nominal, the
+        actual ``length / dp`` within half a layer's share of it)."""
+        dp = self.length / resolution
+        return dp if self.depth is None else lattice_dp(self.depth, dp)
 
     def run(self, resolution: float, quick: bool = False, progress: bool = False) -> dict[str, Any]:
         """Run the case at ``resolution``; returns the run record (never raises for a failed
@@ -794,7 +806,8 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
     x = 3 m, flume 4.8 m (walls d + d/2 = 0.45 m high, above the law's run-up of 0.137 m);
     until = half the paddle motion + travel to the shoreline + 1 s, the same with ``quick``."""
     dp = case.dp(res)
-    depth, height = 0.3, case.length
+    assert case.depth is not None
+    depth, height = case.depth, case.length
     items = {"dp": repr(dp), "wave.height": repr(height), "beach.slope": repr(SOLITARY_SLOPE),
              "beach.toe": "3.0", "flume.length": "4.8"}
 
@@ -957,7 +970,8 @@ CASES: dict[str, Case] = {
              "(per-period means, least-squares trend) over the steady record at 1, 2 or 3 L, "
              "over H.",
              report_details=("H_1L", "H_2L", "H_3L", "wavelength_measured",
-                             "wavelength_linear", "wavelength_stokes3")),
+                             "wavelength_linear", "wavelength_stokes3"),
+             depth=0.3),
         Case("secondorder2d", "first- against second-order piston, d = 0.2 m, T = 1.4 s, "
              "H = 0.045 m (kd = 0.69)",
              "Stokes second-order bound harmonic (constant along the flume)", "wave height / dp",
@@ -975,7 +989,8 @@ CASES: dict[str, Case] = {
              "bound harmonic falls as H^2) is not counted as spread. `local_spread_ratio`: "
              "order-2 over order-1 local spread (the target: at most 0.5, the spread halved). "
              "`a2_mean_orderN`: mean second harmonic against the target's bound amplitude.",
-             report_details=("a2_bound", "local_spread_ratio_2_over_1")),
+             report_details=("a2_bound", "local_spread_ratio_2_over_1"),
+             depth=SECOND_ORDER_WAVE["depth"]),
         Case("bar2d", "Beji & Battjes (1993) submerged bar, H = 0.02 m, T = 2.02 s",
              "Beji & Battjes (1993) gauge records (waves2Foam)", "wave height / dp", 0.02,
              (0.25, 0.33, 0.4), (0.25,), "harmonic1_amplitude", 0.10,
@@ -984,7 +999,7 @@ CASES: dict[str, Case] = {
              "damped at every affordable dp (bar2d's own docstring asks for H/dp >= 5, a run "
              "of hours on this machine). Amplitude errors are RMS over the gauges up to 17.3 m, "
              "over H/2 = 0.01 m; phase errors [rad] are between gauges (the experiment's clock "
-             "offset removed)."),
+             "offset removed).", depth=0.4),
         Case("solitary2d", "non-breaking solitary wave, H/d = 0.15, 1:3 beach",
              "Synolakis (1987) R/d = 2.831 sqrt(cot beta) (H/d)^(5/4)", "wave height / dp",
              0.045, (1.0, 1.5, 2.0), (1.0,), "runup", 0.10,
@@ -995,7 +1010,7 @@ CASES: dict[str, Case] = {
              "and the law does not apply to it. The run-up is read by the flume's automatic "
              "run-up gauge, a line 1.5 dp above the beach (`RunupGauge`): water thinner than "
              "that (3.4-6.8 cm at these dp, against a law run-up of 13.7 cm) is not seen.",
-             report_details=("runup_max", "runup_law", "t_runup_max", "until")),
+             report_details=("runup_max", "runup_law", "t_runup_max", "until"), depth=0.3),
         Case("kimmoun2d", "seed 001: regular waves plunging on a 1:15 beach, about 16 periods",
              "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
              "wave height / dp", 0.114, (1.2, 1.7, 2.3), (1.2,), "breaker_height", 0.10,
@@ -1007,7 +1022,7 @@ CASES: dict[str, Case] = {
              "tanh(xi/2) with the seed's xi = 0.31 (the seed finds its SPH closest to that "
              "formula; the other formulas and the seed's own SPH value are in runs.json).",
              report_details=("breaking_x", "breaker_height", "breaking_onset_mccowan_x",
-                             "runup_over_H")),
+                             "runup_over_H"), depth=0.705),
     )
 }
 """The validation cases by name, in report order."""
