@@ -15,8 +15,8 @@ density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsoun
 ``dsph-dambreak2d``    ``CaseDambreakVal2D``: column 1 x 2 m in a 4 m tank, dp 0.01 m, 21,001
                        particles (20,000 fluid); Wendland, coefh 1.0; alpha 0.02; Fourtakas delta
                        0.1; Verlet; CFL 0.2; coefsound 20. DualSPHysics: 1.16 / 0.70 us.
-``dsph-piston2d``      2D piston flume: depth 0.266 m, H 0.1 m, T 1.3 s, dp 0.006 m (snapped to
-                       0.266 / 44 so the water is whole layers deep), DualSPHysics 22,492
+``dsph-piston2d``      2D piston flume: depth 0.266 m (44 layers of dp: 0.264 m of water, as in
+                       DualSPHysics), H 0.1 m, T 1.3 s, dp 0.006 m, DualSPHysics 22,492
                        particles; Wendland, coefh 1.2; alpha 0.01; no diffusion; Symplectic.
                        DualSPHysics: 2.06 / 1.23 us.
 =====================  =========================================================================
@@ -113,21 +113,23 @@ count, depth, wave, kernel and numerics are)."""
 
 
 def piston2d(dp: float) -> dict[str, Any]:
-    """2D piston flume with regular waves (d = 0.266 m, H = 0.1 m, T = 1.3 s) on a 1:10 beach.
+    """2D piston flume with regular waves (nominal d = 0.266 m, H = 0.1 m, T = 1.3 s) on a 1:10
+    beach, at DualSPHysics' own dp (6 mm for the reference figures).
 
-    ``dp`` [m] is snapped to ``0.266 / round(0.266 / dp)`` (the core fills the water with whole
-    particle layers and the flume refuses a dp that would change its depth): the case's 6 mm
-    becomes 0.266 / 44 = 6.045 mm (before 2026-11-30 it ran at 6 mm with 44 layers, 0.264 m of
-    water)."""
-    from .flume import Flume, Piston, PlaneBeach, RegularWave, lattice_dp
+    A particle lattice fills whole layers, so DualSPHysics' 0.266 m box holds 44 layers of 6 mm:
+    0.264 m of water. The flume here is built with that water depth,
+    ``lattice_layers(0.266, dp) * dp`` (the flume refuses a depth that is not whole layers), so
+    dp, the particles and the water stay DualSPHysics' and the paddle law is computed for the
+    water that is really there."""
+    from .flume import Flume, Piston, PlaneBeach, RegularWave, lattice_layers
 
-    dp = lattice_dp(0.266, dp)
+    depth = lattice_layers(0.266, dp) * dp
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a steep wave on purpose: H/d = 0.38
         scene = Flume(
             length=PISTON_LENGTH + 0.266 * 10.0 + 0.3,
-            depth=0.266,
+            depth=depth,
             beach=PlaneBeach(toe=PISTON_LENGTH, slope=0.1),
         ).scene(
             RegularWave(height=0.1, period=1.3),
