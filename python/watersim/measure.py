@@ -246,6 +246,29 @@ class FrontError:
         }
 
 
+def checked_series(
+    t: npt.ArrayLike, values: npt.ArrayLike, name: str, width: float, shift: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """A simulated dam-break record ready to compare: times (plus ``shift`` [s]) and values as
+    1-D float arrays without the non-finite samples.
+
+    Raises:
+        ValueError: arrays of different lengths or fewer than 2 samples (naming ``t`` and
+            ``name``), times that are not strictly increasing, a non-positive ``width`` [m].
+    """
+    ts = np.asarray(t, dtype=np.float64).ravel() + float(shift)
+    vs = np.asarray(values, dtype=np.float64).ravel()
+    if ts.shape != vs.shape or ts.size < 2:
+        raise ValueError(f"t, {name}: need two 1-D arrays of the same length, at least 2 samples")
+    keep = np.isfinite(ts) & np.isfinite(vs)
+    ts, vs = ts[keep], vs[keep]
+    if ts.size < 2 or np.any(np.diff(ts) <= 0.0):
+        raise ValueError("t: sample times must be finite and strictly increasing")
+    if not width > 0.0:
+        raise ValueError(f"width: must be positive, got {width!r}")
+    return ts, vs
+
+
 def front_error(
     t: npt.ArrayLike,
     x_front: npt.ArrayLike,
@@ -277,16 +300,7 @@ def front_error(
         ValueError: inputs of different lengths, non-increasing times, or no reference point in
             the simulated time range.
     """
-    ts = np.asarray(t, dtype=np.float64).ravel()
-    xs = np.asarray(x_front, dtype=np.float64).ravel()
-    if ts.shape != xs.shape or ts.size < 2:
-        raise ValueError("t, x_front: need two 1-D arrays of the same length, at least 2 samples")
-    keep = np.isfinite(ts) & np.isfinite(xs)
-    ts, xs = ts[keep], xs[keep]
-    if ts.size < 2 or np.any(np.diff(ts) <= 0.0):
-        raise ValueError("t: sample times must be finite and strictly increasing")
-    if not width > 0.0:
-        raise ValueError(f"width: must be positive, got {width!r}")
+    ts, xs = checked_series(t, x_front, "x_front", width)
     ref = load_martin_moyce(reference) if isinstance(reference, str) else reference
     t_ref, x_ref = ref.dimensional(width, g)
     measured = (t_ref > 0.0) & (t_ref <= ts[-1] * (1.0 + 1e-12)) & (t_ref >= ts[0])

@@ -15,7 +15,13 @@ import numpy as np
 import numpy.typing as npt
 
 from .. import wave_theory as wt
-from ..measure import MartinMoyce, MartinMoyceHeight, front_error, load_martin_moyce_height
+from ..measure import (
+    MartinMoyce,
+    MartinMoyceHeight,
+    checked_series,
+    front_error,
+    load_martin_moyce_height,
+)
 
 __all__ = [
     "ColumnHeightError",
@@ -217,16 +223,7 @@ def column_height_error(
         ValueError: inputs of different lengths, non-increasing times, a non-positive width, or
             no reference point in the simulated time range.
     """
-    ts = np.asarray(t, dtype=np.float64).ravel() + float(shift)
-    hs = np.asarray(height, dtype=np.float64).ravel()
-    if ts.shape != hs.shape or ts.size < 2:
-        raise ValueError("t, height: need two 1-D arrays of the same length, at least 2 samples")
-    keep = np.isfinite(ts) & np.isfinite(hs)
-    ts, hs = ts[keep], hs[keep]
-    if ts.size < 2 or np.any(np.diff(ts) <= 0.0):
-        raise ValueError("t: sample times must be finite and strictly increasing")
-    if not width > 0.0:
-        raise ValueError(f"width: must be positive, got {width!r}")
+    ts, hs = checked_series(t, height, "height", width, shift)
     ref = load_martin_moyce_height() if reference is None else reference
     t_ref, h_ref = ref.dimensional(width, g)
     inside = (t_ref >= ts[0]) & (t_ref <= ts[-1] * (1.0 + 1e-12))
