@@ -227,6 +227,13 @@ def test_convergence_order_of_synthetic_errors() -> None:
     assert convergence_order(dp, 3.0 * dp**2).order == pytest.approx(2.0)
     order = convergence_order(dp, 0.2 * dp**-0.5)
     assert order.order == pytest.approx(-0.5) and order.falls is False
+    assert order.falls_every_step is False
+    assert convergence_order(dp, 3.0 * dp**2).falls_every_step is True
+    # the dam break's column height: a slow fall at every step (p = 0.17) ...
+    slow = convergence_order(dp, [0.0433, 0.0409, 0.0353, 0.0311])
+    assert 0.1 < slow.order < 0.2 and slow.falls and slow.falls_every_step
+    # ... is not a fall with one step back up
+    assert convergence_order(dp, [0.0433, 0.0409, 0.0420, 0.0311]).falls_every_step is False
     assert math.isnan(convergence_order([0.1], [0.2]).order)
 
 

@@ -2,10 +2,11 @@
 
 use sph_core::{Scene, Simulation};
 
-fn flume(paddle: &str, gauges: &str) -> Box<dyn Simulation> {
+/// A flume `length` m long with 0.2 m of water (debug builds run these tests: keep them small).
+fn flume(length: f64, paddle: &str, gauges: &str) -> Box<dyn Simulation> {
     let json = format!(
-        r#"{{"dim": 2, "dp": 0.02, "coefh": 1.2, "tank": {{"min": [-0.1, 0], "max": [2.0, 0.4]}},
-            "fluid": [{{"min": [0, 0], "max": [2.0, 0.2]}}],
+        r#"{{"dim": 2, "dp": 0.02, "coefh": 1.2, "tank": {{"min": [-0.1, 0], "max": [{length}, 0.4]}},
+            "fluid": [{{"min": [0, 0], "max": [{length}, 0.2]}}],
             "viscosity": {{"model": "artificial", "alpha": 0.01}},
             "paddle": {paddle}, "gauges": [{gauges}]}}"#
     );
@@ -24,7 +25,8 @@ fn paddle_particles(sim: &dyn Simulation) -> Vec<[f64; 4]> {
 #[test]
 fn piston_follows_its_table_and_pushes_water() {
     let law = r#"{"kind": "piston", "x": 0.0, "law": {"type": "table", "t": [0, 0.5, 10], "x": [0, 0.05, 0.05]}}"#;
-    let mut sim = flume(law, "");
+    // 0.6 m of water is enough to see the push next to the paddle
+    let mut sim = flume(0.6, law, "");
     let rest = paddle_particles(sim.as_ref());
     assert!(!rest.is_empty());
     assert!(rest.iter().all(|p| p[0] < 0.0 && p[0] > -0.1), "plate behind the face");
@@ -47,7 +49,7 @@ fn piston_follows_its_table_and_pushes_water() {
 fn flap_rotates_about_its_hinge() {
     let law = r#"{"kind": "flap", "x": 0.0, "hinge_z": 0.05,
                   "law": {"type": "harmonic", "components": [[0.02, 6.0, 0.0]], "ramp_duration": 0}}"#;
-    let mut sim = flume(law, "");
+    let mut sim = flume(2.0, law, "");
     sim.step(50).expect("stable");
     let t = sim.time();
     // the face point at the still-water level (0.2 m) has moved by X(t) horizontally up to the arc
@@ -78,7 +80,7 @@ fn gauges_read_still_water() {
                     {"type": "velocity", "name": "u", "points": [[1.0, 0.1], [1.0, 0.35]], "interval": 0.02},
                     {"type": "window", "name": "w", "min": [0.5, 0.05], "max": [0.7, 0.15], "n": [3, 2], "interval": 0.05},
                     {"type": "runup", "name": "r", "start": [1.5, 0.03], "end": [1.9, 0.39], "interval": 0.01}"#;
-    let mut sim = flume(paddle, gauges);
+    let mut sim = flume(2.0, paddle, gauges);
     sim.run_until(0.1).expect("stable");
     let g = sim.gauges();
     assert_eq!(g.len(), 5);

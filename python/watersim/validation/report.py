@@ -61,11 +61,14 @@ class ConvergenceOrder:
             as dp falls, NaN with fewer than two distinct dp.
         n_runs: runs used (finished runs with a positive error).
         falls: whether the error of the finest run is below that of the coarsest.
+        falls_every_step: whether every refinement (runs in order of decreasing dp) lowers the
+            error; None with fewer than two distinct dp.
     """
 
     order: float
     n_runs: int
     falls: bool | None
+    falls_every_step: bool | None = None
 
 
 def convergence_order(dp: Sequence[float], error: Sequence[float]) -> ConvergenceOrder:
@@ -82,7 +85,9 @@ def convergence_order(dp: Sequence[float], error: Sequence[float]) -> Convergenc
     slope = float(np.polyfit(x, y, 1)[0])
     finest = min(pairs)[1]
     coarsest = max(pairs)[1]
-    return ConvergenceOrder(slope, len(pairs), finest < coarsest)
+    by_dp = [e for _, e in sorted(pairs, reverse=True)]
+    every_step = all(b < a for a, b in zip(by_dp, by_dp[1:]))
+    return ConvergenceOrder(slope, len(pairs), finest < coarsest, every_step)
 
 
 def pareto_front(records: Sequence[Record], metric: str) -> list[Record]:
@@ -309,7 +314,11 @@ def write_report(
             if math.isnan(order.order):
                 body.append(f"- `{k}`: not enough finished runs")
                 continue
-            if abs(order.order) < FLAT_ORDER:
+            if abs(order.order) < FLAT_ORDER and order.falls_every_step:
+                # a slow but steady fall is not noise about a level: say both
+                trend = (f"falls at every refinement, slowly (|p| < {FLAT_ORDER}, close to a "
+                         "level error)")
+            elif abs(order.order) < FLAT_ORDER:
                 trend = f"stays about level (|p| < {FLAT_ORDER})"
             else:
                 trend = ("falls" if order.falls else "does NOT fall") + \
