@@ -297,6 +297,46 @@ def test_breaking_onset_from_crest_kinematics() -> None:
         an.breaking_onset_from_crests(crest_x, crest_t, speed[:-1], celerity)
 
 
+def _water(dp: float, length: float = 2.0, depth: float = 0.3) -> np.ndarray:
+    """A still lattice of fluid particles (x, z), spacing dp."""
+    x, z = np.meshgrid(np.arange(0.0, length, dp) + dp / 2, np.arange(0.0, depth, dp) + dp / 2)
+    return np.c_[x.ravel(), z.ravel()]
+
+
+def test_overturned_surface_finds_a_jet_over_air_and_nothing_else() -> None:
+    dp = 0.02
+    water = _water(dp)
+    assert an.overturned_surface(water, dp) is None
+    # a jet four columns wide, 4 dp above the surface particles (3 dp of air), from x = 1.0
+    jet = np.array([[1.0 + dp * (i + 0.5), 0.29 + 4 * dp] for i in range(4)])
+    found = an.overturned_surface(np.r_[water, jet], dp)
+    assert found is not None
+    assert (found.x_min, found.x_max) == pytest.approx((1.0, 1.08))
+    assert (found.n_columns, found.n_particles) == (4, 4)
+    assert (found.z_gap_bottom, found.z_gap_top) == pytest.approx((0.29, 0.37))
+    # the same in 3D coordinates (x, y, z): only x and z count
+    xyz = np.c_[np.r_[water, jet][:, 0], np.zeros(len(water) + 4), np.r_[water, jet][:, 1]]
+    assert an.overturned_surface(xyz, dp) == found
+    # spray: one drop, or two drops in columns apart, or a jet with too little air below it
+    assert an.overturned_surface(np.r_[water, jet[:1]], dp) is None
+    assert an.overturned_surface(np.r_[water, jet[[0, 2]]], dp) is None
+    low = jet - [0.0, 1.5 * dp]  # 1.5 dp of air: a wavy surface, not a jet
+    assert an.overturned_surface(np.r_[water, low], dp) is None
+    assert an.overturned_surface(np.r_[water, low], dp, min_gap=1.0) is not None
+    # outside the window it is not seen
+    assert an.overturned_surface(np.r_[water, jet], dp, x_range=(1.2, 2.0)) is None
+    # the widest of two overhangs
+    jet2 = np.array([[1.5 + dp * (i + 0.5), 0.29 + 5 * dp] for i in range(6)])
+    wide = an.overturned_surface(np.r_[water, jet, jet2], dp)
+    assert wide is not None and wide.n_columns == 6 and wide.x_min == pytest.approx(1.5)
+    with pytest.raises(ValueError, match=r"^positions:"):
+        an.overturned_surface(water[:, :1], dp)
+    with pytest.raises(ValueError, match=r"^dp:"):
+        an.overturned_surface(water, 0.0)
+    with pytest.raises(ValueError, match=r"^x_range:"):
+        an.overturned_surface(water, dp, x_range=(2.0, 1.0))
+
+
 # ------------------------------------------------------------------------------------------------
 # Run-up
 

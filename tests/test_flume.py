@@ -14,6 +14,7 @@ import pytest
 
 import watersim as ws
 from watersim import SceneError
+from watersim import analysis as an
 from watersim import wave_theory as wt
 from watersim.flume import FlumeGauges, analyse_flume, flap_height_to_stroke_hinged
 
@@ -480,3 +481,18 @@ def test_analysis_on_a_beach_finds_breaking_and_runup_per_wave() -> None:
     assert ru["mean"] == pytest.approx(0.04, rel=1e-2)  # zeroed on its reading at t = 0
     assert ru["std"] < 1e-3 and ru["n_waves"] >= 15
     assert ru["mean_over_H"] == pytest.approx(0.04 / 0.06, rel=1e-2)
+    # no overturn search made: no overturn keys
+    assert "overturn" not in br and "breaker_type_observed" not in br
+    # with the snapshots the run searched (FlumeSimulation.overturns): the first and the extent
+    jets = [(12.0, an.Overturn(3.9, 4.0, 0.31, 0.37, 5, 6)),
+            (12.1, an.Overturn(4.1, 4.3, 0.30, 0.33, 8, 9))]
+    seen = analyse_flume(sc, FlumeGauges(sc, _records(sc, t, eta, runup)), overturns=jets,
+                         overturn_checks=50)["breaking"]
+    assert seen["breaker_type_observed"] == "plunging"
+    assert seen["overturn"] == {
+        "checks": 50, "seen": 2, "x_min": 3.9, "x_max": 4.3, "columns": 8,
+        "first": {"time": 12.0, "x_min": 3.9, "x_max": 4.0, "gap": pytest.approx(0.06)}}
+    quiet = analyse_flume(sc, FlumeGauges(sc, _records(sc, t, eta, runup)), overturn_checks=50)
+    assert quiet["breaking"]["breaker_type_observed"] is None
+    assert quiet["breaking"]["overturn"] == {"checks": 50, "seen": 0}
+    assert any("no overturned surface" in n for n in quiet["notes"])

@@ -39,6 +39,7 @@ __all__ = [
     "BreakingOnset",
     "GaugeSpacingWarning",
     "Harmonics",
+    "Overturn",
     "PhaseAverage",
     "ReflectionAnalysis",
     "RunupPerWave",
@@ -50,6 +51,7 @@ __all__ = [
     "goda_suzuki",
     "harmonic_analysis",
     "mansard_funke",
+    "overturned_surface",
     "phase_average",
     "runup_per_wave",
     "water_level_envelopes",
@@ -812,6 +814,107 @@ def breaking_onset_from_crests(
         iribarren=xi,
         breaker_type=kind,
     )
+
+
+@dataclass(frozen=True)
+class Overturn:
+    """An overhanging free surface in one particle snapshot: water above air above water.
+
+    Attributes:
+        x_min, x_max: horizontal extent of the overhang [m] (edges of its columns).
+        z_gap_bottom: top of the water below the air gap [m], in the column with the widest gap.
+        z_gap_top: bottom of the overhanging water there [m].
+        n_columns: adjacent columns (width ``dp``) that hold the overhang.
+        n_particles: particles above the gaps, over those columns.
+    """
+
+    x_min: float
+    x_max: float
+    z_gap_bottom: float
+    z_gap_top: float
+    n_columns: int
+    n_particles: int
+
+
+def overturned_surface(
+    positions: npt.ArrayLike,
+    dp: float,
+    x_range: tuple[float, float] | None = None,
+    min_gap: float = 2.0,
+    min_columns: int = 2,
+    min_particles: int = 3,
+) -> Overturn | None:
+    """Find where the free surface overturns (a plunging jet) in one snapshot of fluid particles.
+
+    A plunging breaker throws a jet ahead of the crest that falls onto the water in front: for
+    a while a vertical line through the jet meets water, then air, then water. The particles
+    are binned into columns of width ``dp`` along x; a column overturns when, sorted by height,
+    two consecutive particles are more than ``(1 + min_gap) dp`` apart (at least ``min_gap`` dp
+    of air) with water below the gap. An overturn needs ``min_columns`` adjacent such columns
+    holding at least ``min_particles`` particles above their gaps together, so that single
+    drops of spray or a lone particle thrown off a spilling crest do not count. The widest run
+    of adjacent columns is returned. The snapshot is a 2D section: positions ``(n, 2)`` as
+    (x, z), or ``(n, 3)`` as (x, y, z) for a slice the caller has selected.
+
+    Args:
+        positions: fluid particle positions [m].
+        dp: particle spacing [m].
+        x_range: only columns within (x_min, x_max) [m], e.g. the surf zone.
+        min_gap: least air gap [dp].
+        min_columns: least number of adjacent overturned columns.
+        min_particles: least number of particles above the gaps, over the columns.
+
+    Returns:
+        The widest overturn, or None.
+    """
+    pos = _finite("positions", positions)
+    if pos.ndim != 2 or pos.shape[1] not in (2, 3):
+        raise ValueError(f"positions: expected shape (n, 2) or (n, 3), got {pos.shape}")
+    step = _scalar_positive("dp", dp)
+    gap_limit = (1.0 + _scalar_positive("min_gap", min_gap)) * step
+    if min_columns < 1 or min_particles < 1:
+        raise ValueError(f"min_columns, min_particles: must be >= 1, got {min_columns}, "
+                         f"{min_particles}")
+    x, z = pos[:, 0], pos[:, -1]
+    if x_range is not None:
+        lo, hi = float(x_range[0]), float(x_range[1])
+        if not lo < hi:
+            raise ValueError(f"x_range: expected (x_min, x_max) with x_min < x_max, got {x_range}")
+        keep = (x > lo) & (x < hi)
+        x, z = x[keep], z[keep]
+    if x.size == 0:
+        return None
+    column = np.floor(x / step).astype(np.int64)
+    order = np.lexsort((z, column))
+    column, z = column[order], z[order]
+    starts = np.flatnonzero(np.r_[True, column[1:] != column[:-1]])
+    ends = np.r_[starts[1:], column.size]
+    # per overturned column: (column, particles above its lowest gap, gap bottom, gap top)
+    found: list[tuple[int, int, float, float]] = []
+    for a, b in zip(starts, ends, strict=True):
+        zc = z[a:b]
+        if zc.size < 2:
+            continue
+        gaps = np.flatnonzero(np.diff(zc) > gap_limit)
+        if gaps.size:
+            g = int(gaps[0])
+            found.append((int(column[a]), zc.size - g - 1, float(zc[g]), float(zc[g + 1])))
+    best: Overturn | None = None
+    i = 0
+    while i < len(found):
+        j = i
+        while j + 1 < len(found) and found[j + 1][0] == found[j][0] + 1:
+            j += 1
+        run = found[i:j + 1]
+        n_above = sum(c[1] for c in run)
+        if len(run) >= min_columns and n_above >= min_particles and (
+                best is None or len(run) > best.n_columns):
+            widest = max(run, key=lambda c: c[3] - c[2])
+            best = Overturn(x_min=run[0][0] * step, x_max=(run[-1][0] + 1) * step,
+                            z_gap_bottom=widest[2], z_gap_top=widest[3],
+                            n_columns=len(run), n_particles=n_above)
+        i = j + 1
+    return best
 
 
 # ------------------------------------------------------------------------------------------------

@@ -2004,6 +2004,12 @@ class FlumeSimulation(Simulation):
         super().__init__(setup.to_scene())
         self.setup = setup
         self._gauges_cache: tuple[int, FlumeGauges] | None = None
+        self.overturns: list[tuple[float, an.Overturn]] = []
+        """Overturned free surfaces seen over the beach, ``(time [s], overturn)``: with a beach,
+        :meth:`run` looks for one in every ``sample_interval``
+        (:func:`watersim.analysis.overturned_surface`, from the toe to the far wall)."""
+        self.overturn_checks = 0
+        """Snapshots searched for an overturned surface so far."""
 
     @property
     def gauges(self) -> FlumeGauges:
@@ -2031,7 +2037,24 @@ class FlumeSimulation(Simulation):
                 last good step stay readable (:attr:`gauges`).
         """
         end = float(self.setup.until if until is None else until)  # type: ignore[arg-type]
-        super().run(end, callback_every=callback_every, callback=callback, progress=progress)
+        schedule: list[tuple[float, Callable[[Simulation], Any]]] = []
+        if callback is not None:
+            if callback_every is None:
+                raise ValueError("callback_every: must be a positive number, got None")
+            schedule.append((callback_every, callback))
+        if self.setup.flume.beach is not None:
+            # a plunging breaker shows as a jet over air; only a beach makes one
+            schedule.append((float(self.setup.sample_interval),  # type: ignore[arg-type]
+                             FlumeSimulation._watch_overturn))
+        self.run_schedule(end, schedule, progress=progress)
+
+    def _watch_overturn(self) -> None:
+        """Record an overturned surface over the beach in the current state, if there is one."""
+        found = an.overturned_surface(self.fluid_positions(), float(self.params()["dp"]),
+                                      x_range=(self.setup.toe, self.setup.flume.length))
+        self.overturn_checks += 1
+        if found is not None:
+            self.overturns.append((self.time, found))
 
     def __repr__(self) -> str:
         setup = self.setup
@@ -2051,7 +2074,8 @@ class FlumeSimulation(Simulation):
 
     def analyse(self, t_start: float | None = None) -> dict[str, Any]:
         """The wave analysis of the records so far (see :func:`analyse_flume`)."""
-        return analyse_flume(self.setup, self.gauges, t_start=t_start)
+        return analyse_flume(self.setup, self.gauges, t_start=t_start,
+                             overturns=self.overturns, overturn_checks=self.overturn_checks)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -2094,8 +2118,26 @@ def _best_gauge_set(
     return best
 
 
+def _overturn_summary(overturns: Sequence[tuple[float, an.Overturn]], checks: int
+                      ) -> dict[str, Any]:
+    """JSON-ready summary of the overturned surfaces seen in ``checks`` snapshots."""
+    out: dict[str, Any] = {"checks": checks, "seen": len(overturns)}
+    if overturns:
+        t, first = overturns[0]
+        out["first"] = {"time": t, "x_min": first.x_min, "x_max": first.x_max,
+                        "gap": first.z_gap_top - first.z_gap_bottom}
+        out["x_min"] = min(o.x_min for _, o in overturns)
+        out["x_max"] = max(o.x_max for _, o in overturns)
+        out["columns"] = max(o.n_columns for _, o in overturns)
+    return out
+
+
 def analyse_flume(
-    setup: FlumeScene, gauges: FlumeGauges, t_start: float | None = None
+    setup: FlumeScene,
+    gauges: FlumeGauges,
+    t_start: float | None = None,
+    overturns: Sequence[tuple[float, an.Overturn]] = (),
+    overturn_checks: int = 0,
 ) -> dict[str, Any]:
     """Wave analysis of a flume run, as a JSON-ready dict.
 
@@ -2118,12 +2160,18 @@ def analyse_flume(
     - ``breaking`` (with a beach): ``criterion`` H/d > 0.78 from the gauges' waves, ``position``,
       ``time``, ``wave_height``, ``iribarren`` and ``breaker_type`` from that height, plus
       ``max_height_position`` / ``max_height`` (where the mean wave height peaks among the
-      gauges over the slope) and ``iribarren_incident`` / ``breaker_type_incident`` from the target height.
+      gauges over the slope) and ``iribarren_incident`` / ``breaker_type_incident`` from the
+      target height; with ``overturn_checks`` snapshots searched
+      (:attr:`FlumeSimulation.overturns`): ``overturn`` (``checks``, ``seen`` = snapshots
+      with an overturned surface, the ``first`` one's ``time``, ``x_min``, ``x_max``, ``gap``,
+      the ``x_min``/``x_max`` over all, the most ``columns``) and ``breaker_type_observed``:
+      ``"plunging"`` when the surface overturned, else None (spilling, or no breaking
+      resolved).
     - ``runup`` (with a run-up gauge): per wave (regular: ``mean``, ``std``, ``values``,
       ``mean_over_H``) or overall (``max``; ``R2`` for irregular waves).
     - ``reflection`` (regular or irregular waves, 2-3 gauges over the flat floor between the
-      paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``, ``gauges``, ``coefficient``,
-      ``incident_amplitude``, ``reflected_amplitude``.
+      paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``,
+      ``gauges``, ``coefficient``, ``incident_amplitude``, ``reflected_amplitude``.
     - ``notes``: what could not be computed and why.
     """
     notes: list[str] = []
@@ -2266,6 +2314,12 @@ def analyse_flume(
             breaking["iribarren_incident"] = xi
             breaking["breaker_type_incident"] = str(wt.breaker_type(xi))
         breaking["slope"] = slope
+        if overturn_checks:
+            breaking["overturn"] = _overturn_summary(overturns, overturn_checks)
+            breaking["breaker_type_observed"] = "plunging" if overturns else None
+            if not overturns:
+                notes.append(f"breaking: no overturned surface (a jet over air) in "
+                             f"{overturn_checks} snapshots over the beach")
         result["breaking"] = breaking
 
     # run-up

@@ -552,7 +552,12 @@ def headline(case: str, analysis: dict[str, Any]) -> list[str]:
     br = analysis.get("breaking") or {}
     if br.get("position") is not None:
         lines.append(f"  breaking: x = {br['position']:.2f} m at t = {br['time']:.2f} s, "
-                     f"{br.get('breaker_type')}")
+                     f"{br.get('breaker_type')} by its Iribarren number")
+    first = (br.get("overturn") or {}).get("first")
+    if first is not None:
+        lines.append(f"  plunging: the surface overturned first at t = {first['time']:.2f} s, "
+                     f"x = {first['x_min']:.2f}-{first['x_max']:.2f} m "
+                     f"({br['overturn']['seen']} of {br['overturn']['checks']} samples)")
     ru = analysis.get("runup") or {}
     if ru.get("mean") is not None:
         lines.append(f"  run-up: mean {ru['mean']:.4f} m, std {ru['std']:.4f} m over "

@@ -86,7 +86,7 @@ def convergence_order(dp: Sequence[float], error: Sequence[float]) -> Convergenc
     finest = min(pairs)[1]
     coarsest = max(pairs)[1]
     by_dp = [e for _, e in sorted(pairs, reverse=True)]
-    every_step = all(b < a for a, b in zip(by_dp, by_dp[1:]))
+    every_step = all(b < a for a, b in zip(by_dp, by_dp[1:], strict=False))
     return ConvergenceOrder(slope, len(pairs), finest < coarsest, every_step)
 
 
