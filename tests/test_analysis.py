@@ -323,6 +323,11 @@ def test_overturned_surface_finds_a_jet_over_air_and_nothing_else() -> None:
     low = jet - [0.0, 1.5 * dp]  # 1.5 dp of air: a wavy surface, not a jet
     assert an.overturned_surface(np.r_[water, low], dp) is None
     assert an.overturned_surface(np.r_[water, low], dp, min_gap=1.0) is not None
+    # a void above one particle caught next to the bed is not an overturn
+    lone = np.array([[0.51, 0.01], [0.53, 0.01], [0.51, 0.10], [0.53, 0.10], [0.51, 0.12],
+                     [0.53, 0.12]])
+    assert an.overturned_surface(lone, dp) is None
+    assert an.overturned_surface(np.r_[lone, lone[:2] + [0.0, dp]], dp) is not None
     # outside the window it is not seen
     assert an.overturned_surface(np.r_[water, jet], dp, x_range=(1.2, 2.0)) is None
     # the widest of two overhangs

@@ -850,7 +850,7 @@ def overturned_surface(
     a while a vertical line through the jet meets water, then air, then water. The particles
     are binned into columns of width ``dp`` along x; a column overturns when, sorted by height,
     two consecutive particles are more than ``(1 + min_gap) dp`` apart (at least ``min_gap`` dp
-    of air) with water below the gap. An overturn needs ``min_columns`` adjacent such columns
+    of air) with water below the gap (two particles at least). An overturn needs ``min_columns`` adjacent such columns
     holding at least ``min_particles`` particles above their gaps together, so that single
     drops of spray or a lone particle thrown off a spilling crest do not count. The widest run
     of adjacent columns is returned. The snapshot is a 2D section: positions ``(n, 2)`` as
@@ -895,7 +895,9 @@ def overturned_surface(
         zc = z[a:b]
         if zc.size < 2:
             continue
-        gaps = np.flatnonzero(np.diff(zc) > gap_limit)
+        # water below the gap is at least two particles: a lone particle caught next to the
+        # bed (a pocket of the stepped beach) under a void is not the water a jet falls onto
+        gaps = np.flatnonzero(np.diff(zc[1:]) > gap_limit) + 1
         if gaps.size:
             g = int(gaps[0])
             found.append((int(column[a]), zc.size - g - 1, float(zc[g]), float(zc[g + 1])))
