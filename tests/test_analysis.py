@@ -328,8 +328,21 @@ def test_overturned_surface_finds_a_jet_over_air_and_nothing_else() -> None:
                      [0.53, 0.12]])
     assert an.overturned_surface(lone, dp) is None
     assert an.overturned_surface(np.r_[lone, lone[:2] + [0.0, dp]], dp) is not None
+    # a void inside the water is closed on both sides: not an overturn
+    void = water[~((np.abs(water[:, 0] - 1.04) < 0.03) & (np.abs(water[:, 1] - 0.15) < 0.05))]
+    assert an.overturned_surface(void, dp) is None
+    assert an.overturned_surface(void[void[:, 0] < 1.07], dp) is not None  # opened ahead
     # outside the window it is not seen
     assert an.overturned_surface(np.r_[water, jet], dp, x_range=(1.2, 2.0)) is None
+    # a window edge inside a column does not make a half-empty column (rows shifted by
+    # +-dp/4 in turn: cutting a column in its middle would leave every other row, 2 dp apart)
+    shift = np.where(np.round(water[:, 1] / dp - 0.5) % 2 == 0, -0.25 * dp, 0.25 * dp)
+    rows = water + np.c_[shift, np.zeros_like(shift)]
+    loose = {"min_gap": 0.5, "min_columns": 1, "min_particles": 1}
+    assert an.overturned_surface(rows, dp, **loose) is None
+    assert an.overturned_surface(rows, dp, x_range=(1.01, 1.5), **loose) is None
+    inside = an.overturned_surface(np.r_[water, jet], dp, x_range=(0.995, 1.2))
+    assert inside is not None and inside.x_min == pytest.approx(0.995)
     # the widest of two overhangs
     jet2 = np.array([[1.5 + dp * (i + 0.5), 0.29 + 5 * dp] for i in range(6)])
     wide = an.overturned_surface(np.r_[water, jet, jet2], dp)

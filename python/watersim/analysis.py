@@ -850,7 +850,10 @@ def overturned_surface(
     a while a vertical line through the jet meets water, then air, then water. The particles
     are binned into columns of width ``dp`` along x; a column overturns when, sorted by height,
     two consecutive particles are more than ``(1 + min_gap) dp`` apart (at least ``min_gap`` dp
-    of air) with water below the gap (two particles at least). An overturn needs ``min_columns`` adjacent such columns
+    of air) with water below the gap (two particles at least). The air must open to the side
+    of the run of such columns (the highest particle of a neighbouring column is below the
+    middle of the gap next to it, or the neighbour is empty): a void inside the water, which
+    particle disorder makes, is closed. An overturn needs ``min_columns`` adjacent such columns
     holding at least ``min_particles`` particles above their gaps together, so that single
     drops of spray or a lone particle thrown off a spilling crest do not count. The widest run
     of adjacent columns is returned. The snapshot is a 2D section: positions ``(n, 2)`` as
@@ -859,7 +862,7 @@ def overturned_surface(
     Args:
         positions: fluid particle positions [m].
         dp: particle spacing [m].
-        x_range: only columns within (x_min, x_max) [m], e.g. the surf zone.
+        x_range: only the whole columns from x_min up to x_max [m], e.g. the surf zone.
         min_gap: least air gap [dp].
         min_columns: least number of adjacent overturned columns.
         min_particles: least number of particles above the gaps, over the columns.
@@ -876,20 +879,24 @@ def overturned_surface(
         raise ValueError(f"min_columns, min_particles: must be >= 1, got {min_columns}, "
                          f"{min_particles}")
     x, z = pos[:, 0], pos[:, -1]
+    origin = 0.0
     if x_range is not None:
         lo, hi = float(x_range[0]), float(x_range[1])
         if not lo < hi:
             raise ValueError(f"x_range: expected (x_min, x_max) with x_min < x_max, got {x_range}")
-        keep = (x > lo) & (x < hi)
+        # whole columns from lo: a column cut by the window's edge would look half empty
+        origin = lo
+        keep = (x >= lo) & (x < lo + math.floor((hi - lo) / step) * step)
         x, z = x[keep], z[keep]
     if x.size == 0:
         return None
-    column = np.floor(x / step).astype(np.int64)
+    column = np.floor((x - origin) / step).astype(np.int64)
     order = np.lexsort((z, column))
     column, z = column[order], z[order]
     starts = np.flatnonzero(np.r_[True, column[1:] != column[:-1]])
     ends = np.r_[starts[1:], column.size]
     # per overturned column: (column, particles above its lowest gap, gap bottom, gap top)
+    top = {int(column[b - 1]): float(z[b - 1]) for b in ends}  # highest particle per column
     found: list[tuple[int, int, float, float]] = []
     for a, b in zip(starts, ends, strict=True):
         zc = z[a:b]
@@ -909,10 +916,16 @@ def overturned_surface(
             j += 1
         run = found[i:j + 1]
         n_above = sum(c[1] for c in run)
-        if len(run) >= min_columns and n_above >= min_particles and (
+        # the air under a jet opens to one side (the water ahead of or behind it is lower
+        # than the jet's underside); a void inside the water (particle disorder) is closed
+        before, after = top.get(run[0][0] - 1), top.get(run[-1][0] + 1)
+        mid_first, mid_last = 0.5 * (run[0][2] + run[0][3]), 0.5 * (run[-1][2] + run[-1][3])
+        open_air = (before is None or before < mid_first) or (after is None or after < mid_last)
+        if open_air and len(run) >= min_columns and n_above >= min_particles and (
                 best is None or len(run) > best.n_columns):
             widest = max(run, key=lambda c: c[3] - c[2])
-            best = Overturn(x_min=run[0][0] * step, x_max=(run[-1][0] + 1) * step,
+            best = Overturn(x_min=origin + run[0][0] * step,
+                            x_max=origin + (run[-1][0] + 1) * step,
                             z_gap_bottom=widest[2], z_gap_top=widest[3],
                             n_columns=len(run), n_particles=n_above)
         i = j + 1
