@@ -2010,6 +2010,7 @@ class FlumeSimulation(Simulation):
         (:func:`watersim.analysis.overturned_surface`, from the toe to the far wall)."""
         self.overturn_checks = 0
         """Snapshots searched for an overturned surface so far."""
+        self._dp = float(self.params()["dp"])
 
     @property
     def gauges(self) -> FlumeGauges:
@@ -2037,20 +2038,18 @@ class FlumeSimulation(Simulation):
                 last good step stay readable (:attr:`gauges`).
         """
         end = float(self.setup.until if until is None else until)  # type: ignore[arg-type]
-        schedule: list[tuple[float, Callable[[Simulation], Any]]] = []
-        if callback is not None:
-            if callback_every is None:
-                raise ValueError("callback_every: must be a positive number, got None")
-            schedule.append((callback_every, callback))
-        if self.setup.flume.beach is not None:
-            # a plunging breaker shows as a jet over air; only a beach makes one
-            schedule.append((float(self.setup.sample_interval),  # type: ignore[arg-type]
-                             FlumeSimulation._watch_overturn))
-        self.run_schedule(end, schedule, progress=progress)
+        super().run(end, callback_every=callback_every, callback=callback, progress=progress)
+
+    def _monitors(self) -> list[tuple[float, Callable[[Simulation], Any]]]:
+        # a plunging breaker shows as a jet over air; only a beach makes one
+        if self.setup.flume.beach is None:
+            return []
+        return [(float(self.setup.sample_interval),  # type: ignore[arg-type, list-item]
+                 FlumeSimulation._watch_overturn)]
 
     def _watch_overturn(self) -> None:
         """Record an overturned surface over the beach in the current state, if there is one."""
-        found = an.overturned_surface(self.fluid_positions(), float(self.params()["dp"]),
+        found = an.overturned_surface(self.fluid_positions(), self._dp,
                                       x_range=(self.setup.toe, self.setup.flume.length))
         self.overturn_checks += 1
         if found is not None:

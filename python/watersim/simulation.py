@@ -254,6 +254,7 @@ class Simulation:
         """
         if not math.isfinite(until):
             raise ValueError(f"until: must be finite, got {until!r}")
+        schedule = (*schedule, *self._monitors())
         for every, _ in schedule:
             if not (every > 0.0 and math.isfinite(every)):
                 raise ValueError(f"callback_every: must be a positive number, got {every!r}")
@@ -289,6 +290,11 @@ class Simulation:
         finally:
             if bar is not None:
                 bar.close()
+
+    def _monitors(self) -> list[tuple[float, Callable[[Simulation], Any]]]:
+        """``(interval [s], callback)`` pairs the simulation runs for itself after the caller's
+        (see :meth:`run_schedule`); none here, subclasses add their own."""
+        return []
 
     def _advance(self, target: float, bar: _Progress | None) -> None:
         """Run the core to ``target`` [s], in pieces that update the progress bar if any."""

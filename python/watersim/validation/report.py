@@ -83,11 +83,9 @@ def convergence_order(dp: Sequence[float], error: Sequence[float]) -> Convergenc
     x = np.log([d for d, _ in pairs])
     y = np.log([e for _, e in pairs])
     slope = float(np.polyfit(x, y, 1)[0])
-    finest = min(pairs)[1]
-    coarsest = max(pairs)[1]
-    by_dp = [e for _, e in sorted(pairs, reverse=True)]
+    by_dp = [e for _, e in sorted(pairs, reverse=True)]  # coarsest first
     every_step = all(b < a for a, b in zip(by_dp, by_dp[1:], strict=False))
-    return ConvergenceOrder(slope, len(pairs), finest < coarsest, every_step)
+    return ConvergenceOrder(slope, len(pairs), by_dp[-1] < by_dp[0], every_step)
 
 
 def pareto_front(records: Sequence[Record], metric: str) -> list[Record]:
