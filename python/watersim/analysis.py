@@ -895,8 +895,8 @@ def overturned_surface(
     column, z = column[order], z[order]
     starts = np.flatnonzero(np.r_[True, column[1:] != column[:-1]])
     ends = np.r_[starts[1:], column.size]
-    # per overturned column: (column, particles above its lowest gap, gap bottom, gap top)
     top = {int(column[b - 1]): float(z[b - 1]) for b in ends}  # highest particle per column
+    # per overturned column: (column, particles above its lowest gap, gap bottom, gap top)
     found: list[tuple[int, int, float, float]] = []
     for a, b in zip(starts, ends, strict=True):
         zc = z[a:b]
@@ -916,8 +916,8 @@ def overturned_surface(
             j += 1
         run = found[i:j + 1]
         n_above = sum(c[1] for c in run)
-        # the air under a jet opens to one side (the water ahead of or behind it is lower
-        # than the jet's underside); a void inside the water (particle disorder) is closed
+        # the air under a jet opens to one side (the water next to the run ends below the
+        # middle of the gap); a void inside the water (particle disorder) is closed
         before, after = top.get(run[0][0] - 1), top.get(run[-1][0] + 1)
         mid_first, mid_last = 0.5 * (run[0][2] + run[0][3]), 0.5 * (run[-1][2] + run[-1][3])
         open_air = (before is None or before < mid_first) or (after is None or after < mid_last)
