@@ -8,6 +8,7 @@
     # target, and their spread across the width at each x (percent of H)
     python3 scripts/flume3d_across.py summary runs/v [runs/w ...]
 
+``--fractions F1,F2,...``: the gauges' positions across the width (default 0.25,0.5,0.75).
 ``--periods N``: until = ramp + arrival at 1 L + N periods (the case's own rule, which uses 5).
 """
 
@@ -25,7 +26,7 @@ from watersim import scenefile as sf
 from watersim.flume_cases import flume_builder
 
 
-def write(path: Path, settings: list[str], periods: float) -> None:
+def write(path: Path, settings: list[str], periods: float, fractions: list[float]) -> None:
     items = dict(s.split("=", 1) for s in settings)
     setup = flume_builder("flume3d", items)
     doc = sf.scene_to_dict(setup)
@@ -35,7 +36,7 @@ def write(path: Path, settings: list[str], periods: float) -> None:
     doc["gauges"] = [
         {"type": "elevation", "x": x, "y": round(f * width, 4), "method": m,
          "name": f"{m[0]}_x{x:.3f}_y{f:.2f}"}
-        for m in ("particle", "kernel") for x in (x_half, x_one) for f in (0.25, 0.5, 0.75)
+        for m in ("particle", "kernel") for x in (x_half, x_one) for f in fractions
     ]
     if "until" not in items:
         period = float(setup.period or 0.0)
@@ -77,11 +78,13 @@ def main(argv: list[str] | None = None) -> int:
     w.add_argument("path", type=Path)
     w.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     w.add_argument("--periods", type=float, default=5.0)
+    w.add_argument("--fractions", default="0.25,0.5,0.75",
+                   help="gauge positions across the width, as fractions of it (comma-separated)")
     s = sub.add_parser("summary")
     s.add_argument("folders", type=Path, nargs="+")
     args = parser.parse_args(argv)
     if args.command == "write":
-        write(args.path, args.set, args.periods)
+        write(args.path, args.set, args.periods, [float(f) for f in args.fractions.split(",")])
     else:
         summary(args.folders)
     return 0

@@ -26,6 +26,7 @@ SCENE_KEYS = {
     "viscosity",
     "diffusion",
     "integrator",
+    "shifting",
     "tank",
     "obstacles",
     "fluid",
@@ -40,6 +41,22 @@ def test_scene_error_is_the_cores_and_a_value_error() -> None:
     assert watersim.SceneError is _core.SceneError
     assert issubclass(SceneError, ValueError)
     assert issubclass(watersim.InstabilityError, RuntimeError)
+
+
+def test_shifting_reaches_the_core_and_bad_values_are_named() -> None:
+    assert Tank().to_scene()["shifting"] is None
+    scene = Tank(shifting=2.0).to_scene()
+    assert scene["shifting"] == {"coefficient": 2.0, "surface_threshold": None}
+    assert Tank(dim=3, shifting=1.0, shifting_threshold=2.5).to_scene()["shifting"] == {
+        "coefficient": 1.0, "surface_threshold": 2.5}
+    sim = watersim.Simulation(Tank(dp=0.05, shifting=2.0).to_scene())
+    assert sim.params()["shifting"] == 2.0
+    assert watersim.Simulation(Tank(dp=0.05).to_scene()).params()["shifting"] is None
+    for kwargs, field in [({"shifting": 0.0}, "shifting"),
+                          ({"shifting_threshold": 1.5}, "shifting_threshold"),
+                          ({"shifting": 2.0, "shifting_threshold": 2.0}, "shifting_threshold")]:
+        with pytest.raises(SceneError, match=f"^{field}:"):
+            Tank(**kwargs)
 
 
 @pytest.mark.parametrize(

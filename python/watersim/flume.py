@@ -101,7 +101,9 @@ __all__ = [
 
 SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
 """Free-surface methods of elevation and run-up gauges (DESIGN.md section 4): ``"kernel"``, the
-highest point where the kernel volume sum reaches 0.5; ``"particle"``, the highest fluid particle
+highest point where the fluid's kernel volume sum fills half the space the walls leave free
+(``S_fluid / (1 - S_wall) >= 0.5``: 0.5 away from walls, and right next to a side wall or bed
+too); ``"particle"``, the highest fluid particle
 near the gauge line (seed 001's method)."""
 
 SPECTRA: dict[str, str] = {

@@ -160,6 +160,12 @@ class SceneBuilder:
         delta: density diffusion coefficient [-].
         integrator: ``"symplectic"`` or ``"verlet"``.
         euler_every: Verlet: one Euler step every this many steps.
+        shifting: particle shifting's coefficient ``A`` [-] (Lind et al. 2012 with Skillen et
+            al. 2013's ``D = A h |u| dt``; 2 is DualSPHysics' value, 1-6 the proposed range);
+            ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene.rs``.
+        shifting_threshold: particle divergence at and below which a particle counts as on
+            the free surface and is not shifted [-], in (0, dim); ``None``: 1.5 in 2D, 2.75
+            in 3D. Only with ``shifting``.
         rho0: reference density [kg/m^3].
         gravity: gravitational acceleration [m/s^2], acting along -z.
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
@@ -195,6 +201,8 @@ class SceneBuilder:
     delta: float = 0.1
     integrator: str = "symplectic"
     euler_every: int = 40
+    shifting: float | None = None
+    shifting_threshold: float | None = None
     rho0: float = 1000.0
     gravity: float = 9.81
     h_swl: float | None = None
@@ -245,6 +253,19 @@ class SceneBuilder:
         _non_negative("delta", self.delta)
         _choice("integrator", self.integrator, INTEGRATORS)
         _integer("euler_every", self.euler_every, 1)
+        if self.shifting is not None:
+            _positive("shifting", self.shifting)
+        if self.shifting_threshold is not None:
+            if self.shifting is None:
+                raise SceneError(
+                    "shifting_threshold: only means something with particle shifting on; set "
+                    "shifting (its coefficient, e.g. 2) or leave the threshold unset"
+                )
+            if not 0.0 < _positive("shifting_threshold", self.shifting_threshold) < self.dim:
+                raise SceneError(
+                    f"shifting_threshold: must lie strictly between 0 and dim = {self.dim} (the "
+                    f"particle divergence inside the water), got {self.shifting_threshold!r}"
+                )
         _positive("rho0", self.rho0)
         _positive("gravity", self.gravity)
         if self.h_swl is not None:
@@ -323,6 +344,11 @@ class SceneBuilder:
             "viscosity": viscosity,
             "diffusion": diffusion,
             "integrator": integrator,
+            "shifting": None if self.shifting is None else {
+                "coefficient": float(self.shifting),
+                "surface_threshold": (None if self.shifting_threshold is None
+                                      else float(self.shifting_threshold)),
+            },
             "density_band": float(self.density_band),
             "lost_fraction_limit": float(self.lost_fraction_limit),
         }

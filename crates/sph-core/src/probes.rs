@@ -13,8 +13,9 @@ use crate::math::Real;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum SurfaceMethod {
-    /// Highest point of a vertical line (samples every dp/2) where the kernel volume sum
-    /// `sum_b V_b W >= 0.5`, linearly interpolated between samples.
+    /// Highest point of a vertical line (samples every dp/2) where the fluid's kernel volume
+    /// sum `sum_b V_b W` fills half the space the walls leave free (`S_fluid / (1 - S_wall)
+    /// >= 0.5`, which is `S_fluid >= 0.5` away from walls), linearly interpolated between samples.
     #[default]
     Kernel,
     /// Highest fluid particle within 0.75 dp of the line, plus dp/2 (the particle's half-spacing,

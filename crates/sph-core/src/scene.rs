@@ -62,6 +62,39 @@ fn default_euler_every() -> u32 {
     40
 }
 
+/// Fickian particle shifting (Lind et al. 2012, J. Comput. Phys. 231, Eqs. 22-23): after each
+/// step a fluid particle moves by `dr = -a_fs D grad C`, with the concentration gradient
+/// `grad C = sum_b V_b grad W_ab` over fluid and wall neighbours and Skillen et al. (2013)'s
+/// coefficient `D = A h |u| dt` (their Eq. 26), so still water is never shifted. Free-surface
+/// particles lack half their neighbours and `grad C` would push them out of the water: the
+/// particle divergence `div r = -sum_b V_b r_ab . grad W_ab` (Lee et al. 2008; `dim` in the
+/// bulk) detects them, and `a_fs` ramps from 0 at `div r = surface_threshold` to 1 at
+/// `div r = dim` (DualSPHysics' free-surface correction, Mokos 2013, with its thresholds 1.5
+/// in 2D and 2.75 in 3D). The shift only moves particles; it does not correct the velocity or
+/// density (as DualSPHysics' Lind shifting).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shifting {
+    /// `A` of `D = A h |u| dt`; Skillen et al. (2013) propose 1-6, DualSPHysics uses 2.
+    #[serde(default = "default_shifting_coefficient")]
+    pub coefficient: Real,
+    /// Particle divergence at and below which a particle is on the free surface and not
+    /// shifted; default 1.5 in 2D, 2.75 in 3D. Must lie between 0 and `dim`.
+    #[serde(default)]
+    pub surface_threshold: Option<Real>,
+}
+
+fn default_shifting_coefficient() -> Real {
+    2.0
+}
+
+impl Shifting {
+    /// The free-surface threshold for `dim` (the default when none is given).
+    pub fn threshold(&self, dim: usize) -> Real {
+        self.surface_threshold.unwrap_or(if dim == 2 { 1.5 } else { 2.75 })
+    }
+}
+
 /// An axis-aligned box `[min, max]`; vectors have `dim` entries, the last vertical.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -139,6 +172,9 @@ pub struct Scene {
     pub diffusion: Diffusion,
     #[serde(default = "default_integrator")]
     pub integrator: Integrator,
+    /// Particle shifting; none by default.
+    #[serde(default)]
+    pub shifting: Option<Shifting>,
     /// Inner faces of the tank (floor and side walls; the top is open).
     pub tank: BoxSpec,
     #[serde(default)]
@@ -328,6 +364,16 @@ impl Scene {
         if let Integrator::Verlet { euler_every } = self.integrator {
             if euler_every == 0 {
                 return Err(Error::invalid("integrator.euler_every", "must be >= 1"));
+            }
+        }
+        if let Some(sh) = self.shifting {
+            check_positive("shifting.coefficient", sh.coefficient)?;
+            let t = sh.threshold(dim);
+            if !t.is_finite() || t <= 0.0 || t >= dim as Real {
+                return Err(Error::invalid(
+                    "shifting.surface_threshold",
+                    format!("must lie strictly between 0 and dim = {dim} (the bulk's particle divergence), got {t}"),
+                ));
             }
         }
         if let Some(0) = self.boundary_layers {
@@ -595,6 +641,9 @@ mod tests {
             (dambreak_json(r#", "viscosity": {"model": "artificial", "alpha": -0.1}"#), "viscosity.alpha"),
             (dambreak_json(r#", "viscosity": {"model": "magic"}"#), "viscosity"),
             (dambreak_json(r#", "bogus": 1"#), "bogus"),
+            (dambreak_json(r#", "shifting": {"coefficient": 0}"#), "shifting.coefficient"),
+            (dambreak_json(r#", "shifting": {"surface_threshold": 2.0}"#), "shifting.surface_threshold"),
+            (dambreak_json(r#", "shifting": {"coeff": 2}"#), "shifting"),
             (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
             (dambreak_json(r#", "obstacles": [{"shape": "plane", "point": [0, 0], "normal": [0, 0]}]"#), "obstacles[0].normal"),
             (r#"{"dim": 2, "dp": 0.0, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [1, 2]}]}"#.to_string(), "dp"),

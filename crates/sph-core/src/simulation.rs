@@ -15,7 +15,7 @@ use crate::motion::PaddlePose;
 use crate::particles::{permute, permute_vectors, Particles, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
-use crate::physics::forces::{boundary_density_rate, fluid_forces, sps_stress, Fields, StepLimits};
+use crate::physics::forces::{boundary_density_rate, fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
 use crate::scene::{Integrator, Scene};
 
@@ -60,6 +60,8 @@ pub struct Params {
     pub viscosity: &'static str,
     pub diffusion: &'static str,
     pub integrator: &'static str,
+    /// Particle shifting's coefficient `A` (none without shifting).
+    pub shifting: Option<Real>,
     /// Smallest time step allowed before the run is declared unstable [s].
     pub dt_floor: Real,
 }
@@ -142,6 +144,19 @@ enum History<D: Dim> {
     Verlet { vel_prev: Vec<D::V>, rho_prev: Vec<Real>, euler_every: u32 },
 }
 
+/// Particle shifting's per-fluid-particle fields (see [`crate::scene::Shifting`]), computed
+/// after the step's last force evaluation (no cell sort comes between them and their use).
+#[derive(Debug, Clone)]
+struct ShiftState<D: Dim> {
+    /// `A h` of Skillen et al.'s `D = A h |u| dt`.
+    a_h: Real,
+    /// Free-surface threshold and the bulk's particle divergence (`dim`).
+    threshold: Real,
+    bulk: Real,
+    grad: Vec<D::V>,
+    div: Vec<Real>,
+}
+
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     perm: Vec<u32>,
@@ -158,6 +173,7 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     history: History<D>,
     /// SPS stress per fluid particle; empty without the SPS closure.
     tau: Vec<D::Sym>,
+    shift: Option<ShiftState<D>>,
     scratch: Scratch,
     time: Real,
     steps: u64,
@@ -240,6 +256,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             }
         };
         let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
+        let shift = scene.shifting.map(|sh| ShiftState {
+            a_h: sh.coefficient * c.h,
+            threshold: sh.threshold(D::DIM),
+            bulk: D::DIM as Real,
+            grad: vec![D::V::ZERO; n_fluid],
+            div: vec![0.0; n_fluid],
+        });
         // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
         let dt_floor = 1e-6 * c.h / c.c0;
         let scratch = Scratch { perm: vec![0; n], gather: vec![0u64; n] };
@@ -251,6 +274,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             grid,
             history,
             tau,
+            shift,
             scratch,
             time: 0.0,
             steps: 0,
@@ -459,21 +483,53 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         }
     }
 
+    /// Kernel volume sum `sum_b (m_b / rho_b) W(x - x_b)` over the particles of the groups `groups`.
+    fn volume_sum(&self, groups: &[usize], x: D::V) -> Real {
+        let support2 = self.c.support * self.c.support;
+        let p = &self.p;
+        let mut sum = 0.0;
+        for &g in groups {
+            self.grid.for_each_near(g, x, |b| {
+                let r2 = (x - p.pos[b]).length_squared();
+                if r2 < support2 {
+                    sum += self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
+                }
+            });
+        }
+        sum
+    }
+
+    /// How full of water the space at `x` is: the fluid's kernel volume sum over the share of the
+    /// kernel that the walls leave free, `S_fluid / (1 - S_wall)`. Away from walls this is the
+    /// plain fluid sum of DESIGN.md section 4 (surface where it is 0.5); next to a side wall or
+    /// a bed the walls' particles fill up to half of the kernel (a quarter is left in the corner
+    /// of two walls), and the plain sum would read a full column there as half empty. The free
+    /// share is floored at that corner's 1/4 so that points inside a wall do not turn wet on a
+    /// trace of fluid.
+    fn wet_fraction(&self, x: D::V) -> Real {
+        let fluid = self.volume_sum(&[GROUP_FLUID], x);
+        if fluid <= 0.0 {
+            return 0.0;
+        }
+        let wall = self.volume_sum(&[GROUP_FIXED, GROUP_MOVING], x);
+        fluid / (1.0 - wall).max(0.25)
+    }
+
     /// Along the points `a + (b - a) s`, s from 0 to 1 every dp/2, the last point (from `b`
-    /// backwards) where the kernel volume sum reaches 0.5, linearly interpolated; returns that
-    /// point's vertical coordinate, or NaN if no point is wet.
+    /// backwards) where the wet fraction ([`Self::wet_fraction`]) reaches 0.5, linearly
+    /// interpolated; returns that point's vertical coordinate, or NaN if no point is wet.
     fn last_wet_along(&self, a: D::V, b: D::V) -> Real {
         let len = (b - a).length();
         let n = ((len / (0.5 * self.c.dp)).ceil() as usize).max(1);
         let at = |i: usize| a + (b - a) * (i as Real / n as Real);
-        let top = self.shepard(at(n)).0;
+        let top = self.wet_fraction(at(n));
         if top >= 0.5 {
             return at(n).vertical();
         }
         let mut above = (at(n), top);
         for i in (0..n).rev() {
             let x = at(i);
-            let w = self.shepard(x).0;
+            let w = self.wet_fraction(x);
             if w >= 0.5 {
                 let s = (w - 0.5) / (w - above.1).max(Real::EPSILON);
                 return (x + (above.0 - x) * s.clamp(0.0, 1.0)).vertical();
@@ -622,27 +678,40 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let c = self.c;
         let fs = self.p.fluid_start();
         if VISC == VISC_LAMINAR_SPS {
-            let fields = Fields::<D> {
-                pos: &self.p.pos,
-                vel: &self.p.vel,
-                rho: &self.p.rho,
-                kind: &self.p.kind,
-                tau: &[],
-                fluid_start: fs,
-            };
+            let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
         }
-        let fields = Fields::<D> {
-            pos: &self.p.pos,
-            vel: &self.p.vel,
-            rho: &self.p.rho,
-            kind: &self.p.kind,
-            tau: &self.tau,
-            fluid_start: fs,
-        };
-        let (drho_walls, drho_fluid) = self.p.drho.split_at_mut(fs);
+        // field by field: `drho` and `acc` are borrowed mutably next to them
+        let p = &mut self.p;
+        let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, fluid_start: fs };
+        let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
         boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls);
-        fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut self.p.acc, drho_fluid)
+        fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut p.acc, drho_fluid)
+    }
+
+    /// Particle shifting's fields from the current (sorted) state; nothing without shifting.
+    fn compute_shifting(&mut self) {
+        let Some(shift) = &mut self.shift else { return };
+        let fields = fields_of(&self.p, &[]);
+        shifting_fields(&self.c, &self.kernel, &self.grid, fields, &mut shift.grad, &mut shift.div);
+    }
+
+    /// Moves each fluid particle by its shift `-a_fs A h |u| dt grad C` (see
+    /// [`crate::scene::Shifting`]), `u` its velocity at the end of the step.
+    fn shift_positions(&mut self, dt: Real) {
+        let Some(shift) = &self.shift else { return };
+        let fs = self.p.fluid_start();
+        let (_, pos_f) = self.p.pos.split_at_mut(fs);
+        let vel_f = &self.p.vel[fs..];
+        let span = shift.bulk - shift.threshold;
+        pos_f.par_iter_mut().zip(vel_f.par_iter()).zip(shift.grad.par_iter().zip(shift.div.par_iter())).for_each(
+            |((x, v), (&grad, &div))| {
+                let surface = ((div - shift.threshold) / span).clamp(0.0, 1.0);
+                if surface > 0.0 {
+                    *x += grad * (-surface * shift.a_h * v.length() * dt);
+                }
+            },
+        );
     }
 
     /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).
@@ -737,6 +806,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 // Corrector, with the paddle at mid-step.
                 self.move_boundaries(self.time + half);
                 let _ = self.compute_forces();
+                self.compute_shifting();
                 let History::Symplectic { vel0, rho0: rho_n } = &self.history else { unreachable!() };
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_n.par_iter()).enumerate().for_each(
@@ -766,6 +836,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             History::Verlet { euler_every, .. } => {
                 let lim = self.compute_forces();
                 let dt = self.time_step(lim)?;
+                self.compute_shifting();
                 // Euler on the first step (no history yet) and every `euler_every` steps.
                 let euler = self.steps.is_multiple_of(euler_every as u64);
                 let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history else { unreachable!() };
@@ -796,6 +867,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 self.dt = dt;
             }
         }
+        self.shift_positions(self.dt);
         self.damp(self.dt);
         self.time += self.dt;
         self.steps += 1;
@@ -808,6 +880,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         }
         Ok(())
     }
+}
+
+/// The read-only fields of a force or shifting pass over the particles `p`.
+fn fields_of<'a, D: Dim>(p: &'a Particles<D>, tau: &'a [D::Sym]) -> Fields<'a, D> {
+    Fields { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau, fluid_start: p.fluid_start() }
 }
 
 fn flat<V: Vector>(v: &[V]) -> &[Real] {
@@ -879,6 +956,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()
+            + self.shift.as_ref().map_or(0, |s| s.grad.capacity() * v + s.div.capacity() * r)
             + self.moving_ref.capacity() * v
             + self.grid.memory_bytes()
             + scratch
@@ -914,6 +992,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
                 Integrator::Symplectic => "symplectic",
                 Integrator::Verlet { .. } => "verlet",
             },
+            shifting: s.shifting.map(|sh| sh.coefficient),
             dt_floor: self.dt_floor,
         }
     }
@@ -1034,14 +1113,7 @@ mod batched_loop_tests {
         s.step(40).expect("stable");
         s.compute_forces();
         let n = s.p.n_fluid();
-        let fields = Fields::<D> {
-            pos: &s.p.pos,
-            vel: &s.p.vel,
-            rho: &s.p.rho,
-            kind: &s.p.kind,
-            tau: &[],
-            fluid_start: s.p.fluid_start(),
-        };
+        let fields = fields_of(&s.p, &[]);
         let (mut acc_s, mut drho_s) = (vec![D::V::ZERO; n], vec![0.0; n]);
         let (mut acc_b, mut drho_b) = (vec![D::V::ZERO; n], vec![0.0; n]);
         let lim_s = fluid_forces_scalar::<D, K, VISC, DIFF>(&s.c, &s.kernel, &s.grid, fields, &mut acc_s, &mut drho_s);

@@ -103,6 +103,30 @@ fn gauges_read_still_water() {
     assert!(r.values.iter().all(|z| (z - 0.2).abs() < 0.02), "{:?}", r.values);
 }
 
+/// The kernel gauge reads still water at its depth next to a side wall and in a corner too:
+/// there the walls' particles fill part of the kernel, and the plain fluid sum would put the
+/// surface low (it reads a full column as half empty within 2h of a wall).
+#[test]
+fn kernel_gauges_read_still_water_next_to_walls() {
+    let dp = 0.02;
+    let gauge = |name: &str, x: f64, y: f64| {
+        format!(r#"{{"type": "elevation", "name": "{name}", "position": [{x}, {y}, 0], "interval": 0.01}}"#)
+    };
+    let gauges = [gauge("centre", 0.1, 0.06), gauge("side", 0.1, 0.5 * dp), gauge("corner", 0.5 * dp, 0.5 * dp)];
+    let json = format!(
+        r#"{{"dim": 3, "dp": {dp}, "coefh": 1.2, "tank": {{"min": [0, 0, 0], "max": [0.2, 0.12, 0.2]}},
+            "fluid": [{{"min": [0, 0, 0], "max": [0.2, 0.12, 0.1]}}],
+            "viscosity": {{"model": "artificial", "alpha": 0.01}}, "gauges": [{}]}}"#,
+        gauges.join(",")
+    );
+    let sim = sph_core::build(Scene::from_json(&json).expect("valid scene")).expect("built");
+    let read: Vec<f64> = sim.gauges().iter().map(|g| g.values[0]).collect();
+    for (g, z) in sim.gauges().iter().zip(&read) {
+        assert!((z - 0.1).abs() < 0.25 * dp, "{} reads {z}, water is 0.1 m deep", g.name);
+    }
+    assert!((read[1] - read[0]).abs() < 0.1 * dp && (read[2] - read[0]).abs() < 0.1 * dp, "{read:?}");
+}
+
 #[test]
 fn bad_flume_fields_are_named() {
     let cases = [

@@ -274,6 +274,37 @@ pub fn sps_stress<D: Dim, K: Kernel>(
     });
 }
 
+/// Particle-shifting fields of each fluid particle (see [`crate::scene::Shifting`]): the
+/// concentration gradient `grad C_a = sum_b V_b grad_a W_ab` (Lind et al. 2012, Eq. 23) and the
+/// particle divergence `div r_a = -sum_b V_b r_ab . grad_a W_ab` (Lee et al. 2008), over wall
+/// and fluid neighbours in a fixed order (walls, paddle, fluid). Excluded particles get zeros.
+pub fn shifting_fields<D: Dim, K: Kernel>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    grad: &mut [D::V],
+    div: &mut [Real],
+) {
+    let support2 = c.support * c.support;
+    grad.par_iter_mut().zip(div.par_iter_mut()).enumerate().for_each(|(i, (grad_a, div_a))| {
+        let a = f.fluid_start + i;
+        let (mut g, mut d) = (D::V::ZERO, 0.0);
+        if f.kind[a] != KIND_EXCLUDED {
+            let pa = f.pos[a];
+            for group in 0..GROUPS {
+                for_each_pair(grid, support2, group, f.pos, pa, |b, r, r2, dist| {
+                    let vf = c.mass / f.rho[b] * kernel.grad_factor(dist);
+                    g += r * vf;
+                    d -= r2 * vf;
+                });
+            }
+        }
+        *grad_a = g;
+        *div_a = d;
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
