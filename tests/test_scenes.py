@@ -27,6 +27,7 @@ SCENE_KEYS = {
     "diffusion",
     "integrator",
     "shifting",
+    "boundary",
     "tank",
     "obstacles",
     "fluid",

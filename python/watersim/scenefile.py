@@ -69,6 +69,7 @@ from .flume import (
     VelocityWindow,
 )
 from .scenes import (
+    BOUNDARY_MODELS,
     DIFFUSION_MODELS,
     INTEGRATORS,
     KERNELS,
@@ -123,6 +124,7 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SceneBuilder, "viscosity"): VISCOSITY_MODELS,
     (SceneBuilder, "diffusion"): DIFFUSION_MODELS,
     (SceneBuilder, "integrator"): INTEGRATORS,
+    (SceneBuilder, "boundary"): BOUNDARY_MODELS,
     (IrregularWave, "spectrum"): tuple(SPECTRA),
     (Piston, "ramp"): RAMPS,
     (Flap, "ramp"): RAMPS,

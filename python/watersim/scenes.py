@@ -52,6 +52,7 @@ if TYPE_CHECKING:
 __all__ = [
     "DIFFUSION_MODELS",
     "INTEGRATORS",
+    "BOUNDARY_MODELS",
     "KERNELS",
     "VISCOSITY_MODELS",
     "DamBreak",
@@ -67,6 +68,10 @@ DIFFUSION_MODELS: tuple[str, ...] = ("none", "molteni", "fourtakas")
 """Density diffusion terms the core knows."""
 INTEGRATORS: tuple[str, ...] = ("symplectic", "verlet")
 """Time integration schemes the core knows."""
+BOUNDARY_MODELS: tuple[str, ...] = ("dbc", "adami")
+"""Wall boundary models the core knows: ``"dbc"``, the dynamic boundary condition (Crespo et
+al. 2007; wall particles integrate continuity); ``"adami"``, Adami, Hu & Adams (2012; wall
+particles take the pressure extrapolated from their fluid neighbours at every step)."""
 
 MAX_DENSITY_BAND = 1.0
 """Largest ``density_band`` accepted: the band ``rho0 (1 -+ density_band)`` then reaches
@@ -160,6 +165,8 @@ class SceneBuilder:
         delta: density diffusion coefficient [-].
         integrator: ``"symplectic"`` or ``"verlet"``.
         euler_every: Verlet: one Euler step every this many steps.
+        boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see :data:`BOUNDARY_MODELS`
+            and ``Boundary`` in ``crates/sph-core/src/scene.rs``).
         shifting: particle shifting's coefficient ``A`` [-] (Lind et al. 2012 with Skillen et
             al. 2013's ``D = A h |u| dt``; 2 is DualSPHysics' value, 1-6 the proposed range);
             ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene.rs``.
@@ -201,6 +208,7 @@ class SceneBuilder:
     delta: float = 0.1
     integrator: str = "symplectic"
     euler_every: int = 40
+    boundary: str = "dbc"
     shifting: float | None = None
     shifting_threshold: float | None = None
     rho0: float = 1000.0
@@ -253,6 +261,7 @@ class SceneBuilder:
         _non_negative("delta", self.delta)
         _choice("integrator", self.integrator, INTEGRATORS)
         _integer("euler_every", self.euler_every, 1)
+        _choice("boundary", self.boundary, BOUNDARY_MODELS)
         if self.shifting is not None:
             _positive("shifting", self.shifting)
         if self.shifting_threshold is not None:
@@ -344,6 +353,7 @@ class SceneBuilder:
             "viscosity": viscosity,
             "diffusion": diffusion,
             "integrator": integrator,
+            "boundary": {"model": self.boundary},
             "shifting": None if self.shifting is None else {
                 "coefficient": float(self.shifting),
                 "surface_threshold": (None if self.shifting_threshold is None

@@ -15,9 +15,11 @@ use crate::motion::PaddlePose;
 use crate::particles::{permute, permute_vectors, Particles, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
-use crate::physics::forces::{boundary_density_rate, fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
+use crate::physics::forces::{
+    boundary_density_rate, fluid_forces, shifting_fields, sps_stress, wall_density_from_fluid, Fields, StepLimits,
+};
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
-use crate::scene::{Integrator, Scene};
+use crate::scene::{Boundary, Integrator, Scene};
 
 trait NanIfInfinite {
     fn pipe_nan(self) -> Self;
@@ -60,6 +62,8 @@ pub struct Params {
     pub viscosity: &'static str,
     pub diffusion: &'static str,
     pub integrator: &'static str,
+    /// Wall boundary model: "dbc" or "adami".
+    pub boundary: &'static str,
     /// Particle shifting's coefficient `A` (none without shifting).
     pub shifting: Option<Real>,
     /// Smallest time step allowed before the run is declared unstable [s].
@@ -185,6 +189,10 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     moving_ref: Vec<D::V>,
     /// Resolved hinge height and still-water level of the paddle.
     paddle_levels: (Real, Real),
+    /// Time of the paddle's current pose (the last `move_boundaries`).
+    paddle_time: Real,
+    /// Accelerations of the paddle particles in storage order (Adami walls with a paddle only).
+    moving_acc: Vec<D::V>,
     gauges: Vec<GaugeRecord>,
     /// Box outside which fluid particles are excluded.
     domain: (D::V, D::V),
@@ -282,6 +290,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             dt_floor,
             moving_ref: sampled.moving,
             paddle_levels: (0.0, 0.0),
+            paddle_time: 0.0,
+            moving_acc: Vec::new(),
             gauges: Vec::new(),
             domain: (lo, hi),
             n_excluded: 0,
@@ -292,6 +302,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
             let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
             solver.paddle_levels = (hinge, swl);
+            if solver.scene.boundary == Boundary::Adami {
+                solver.moving_acc = vec![D::V::ZERO; solver.p.n_moving];
+            }
         }
         solver.gauges = solver.scene.gauges.iter().map(|g| solver.new_record(g)).collect();
         solver.move_boundaries(0.0);
@@ -308,6 +321,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let Some(paddle) = &self.scene.paddle else { return };
         let (hinge, swl) = self.paddle_levels;
         let pose: PaddlePose = paddle.pose(t, hinge, swl);
+        self.paddle_time = t;
         let range = self.p.n_fixed..self.p.fluid_start();
         let up = D::DIM - 1;
         let (n_fixed, reference) = (self.p.n_fixed as u32, &self.moving_ref);
@@ -322,6 +336,30 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             *v = D::V::ZERO;
             v.set(0, uw[0]);
             v.set(up, uw[1]);
+        });
+    }
+
+    /// The paddle particles' accelerations at the current pose (Adami walls need the wall's
+    /// acceleration), by a central difference of the motion law's velocities over 2e-5 s.
+    fn update_moving_acc(&mut self) {
+        const DT: Real = 1e-5;
+        let Some(paddle) = &self.scene.paddle else { return };
+        if self.moving_acc.is_empty() {
+            return;
+        }
+        let (hinge, swl) = self.paddle_levels;
+        let t0 = (self.paddle_time - DT).max(0.0);
+        let (before, after) = (paddle.pose(t0, hinge, swl), paddle.pose(t0 + 2.0 * DT, hinge, swl));
+        let up = D::DIM - 1;
+        let (n_fixed, reference) = (self.p.n_fixed as u32, &self.moving_ref);
+        let ids = &self.p.id[self.p.n_fixed..self.p.fluid_start()];
+        self.moving_acc.par_iter_mut().zip(ids.par_iter()).for_each(|(a, &id)| {
+            let r = reference[(id - n_fixed) as usize];
+            let (_, u0) = before.apply(r.get(0), r.get(up));
+            let (_, u1) = after.apply(r.get(0), r.get(up));
+            *a = D::V::ZERO;
+            a.set(0, (u1[0] - u0[0]) / (2.0 * DT));
+            a.set(up, (u1[1] - u0[1]) / (2.0 * DT));
         });
     }
 
@@ -677,6 +715,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.sort_group(GROUP_FLUID);
         let c = self.c;
         let fs = self.p.fluid_start();
+        if self.scene.boundary == Boundary::Adami {
+            self.update_moving_acc();
+            let p = &mut self.p;
+            let (rho_walls, rho_fluid) = p.rho.split_at_mut(fs);
+            let (pos, kind, n_fixed) = (&p.pos, &p.kind, p.n_fixed);
+            wall_density_from_fluid(&c, &self.kernel, &self.grid, pos, kind, rho_fluid, n_fixed, &self.moving_acc, rho_walls);
+        }
         if VISC == VISC_LAMINAR_SPS {
             let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
@@ -685,7 +730,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let p = &mut self.p;
         let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, fluid_start: fs };
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
-        boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls);
+        match self.scene.boundary {
+            Boundary::Dbc => boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls),
+            // densities set above; the integrator leaves them alone
+            Boundary::Adami => drho_walls.fill(0.0),
+        }
         fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut p.acc, drho_fluid)
     }
 
@@ -780,6 +829,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn step_once(&mut self) -> Result<()> {
         let fs = self.p.fluid_start();
         let rho0 = self.c.rho0;
+        // Adami walls: densities come from the fluid at each force evaluation, not integrated
+        let walls_from_fluid = self.scene.boundary == Boundary::Adami;
         match self.history {
             History::Symplectic { .. } => {
                 // Predictor (Leimkuhler & Patrick; DualSPHysics form).
@@ -791,6 +842,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 rho_n.copy_from_slice(&self.p.rho);
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).enumerate().for_each(|(i, (r, &d))| {
+                    if i < fs && walls_from_fluid {
+                        return;
+                    }
                     *r += half * d;
                     if i < fs {
                         *r = r.max(rho0); // DBC: walls never suck fluid in (DualSPHysics)
@@ -811,6 +865,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_n.par_iter()).enumerate().for_each(
                     |(i, ((r, &d), &rn))| {
+                        if i < fs && walls_from_fluid {
+                            return;
+                        }
                         let eps = -d / *r * dt;
                         *r = rn * (2.0 - eps) / (2.0 + eps);
                         if i < fs {
@@ -843,6 +900,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_prev.par_iter_mut()).enumerate().for_each(
                     |(i, ((r, &d), rp))| {
+                        if i < fs && walls_from_fluid {
+                            return;
+                        }
                         let mut next = if euler { *r + dt * d } else { *rp + 2.0 * dt * d };
                         if i < fs {
                             next = next.max(rho0);
@@ -958,6 +1018,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             + self.tau.capacity() * size_of::<D::Sym>()
             + self.shift.as_ref().map_or(0, |s| s.grad.capacity() * v + s.div.capacity() * r)
             + self.moving_ref.capacity() * v
+            + self.moving_acc.capacity() * v
             + self.grid.memory_bytes()
             + scratch
     }
@@ -991,6 +1052,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             integrator: match s.integrator {
                 Integrator::Symplectic => "symplectic",
                 Integrator::Verlet { .. } => "verlet",
+            },
+            boundary: match s.boundary {
+                Boundary::Dbc => "dbc",
+                Boundary::Adami => "adami",
             },
             shifting: s.shifting.map(|sh| sh.coefficient),
             dt_floor: self.dt_floor,

@@ -90,7 +90,7 @@ fn run_tank(threads: usize, extra: &str) -> (Vec<f64>, Vec<u32>) {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    for extra in ["", r#", "shifting": {}"#] {
+    for extra in ["", r#", "shifting": {}"#, r#", "boundary": {"model": "adami"}"#] {
         let (p1, i1) = run_tank(1, extra);
         let (p2, i2) = run_tank(2, extra);
         let (p3, i3) = run_tank(3, extra);
@@ -99,6 +99,36 @@ fn results_do_not_depend_on_the_thread_count() {
         assert!(p1.iter().zip(&p2).all(|(a, b)| a.to_bits() == b.to_bits()), "{extra}");
         assert!(p1.iter().zip(&p3).all(|(a, b)| a.to_bits() == b.to_bits()), "{extra}");
     }
+}
+
+#[test]
+fn adami_walls_carry_the_hydrostatic_pressure() {
+    // Adami et al. (2012) Eq. 27: under still water a wall particle's pressure is the fluid's
+    // extrapolated to it, p = rho0 g (d - z_w), below the floor and behind the side walls alike;
+    // wall particles above the water get rho0 (no pressure).
+    let scene = tank(r#", "boundary": {"model": "adami"}"#);
+    let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+    s.compute_forces();
+    let (c, p) = (*s.constants(), s.particles());
+    let (mut checked, mut dry) = (0, 0);
+    // the two wall layers next to the floor (away from the corners) and the side walls
+    let d2 = 2.0 * c.dp;
+    let inner_layers = |x: f64, z: f64| {
+        (z > -d2 && z < 0.0 && x > 0.1 && x < 0.5) || (z > 0.0 && ((x > -d2 && x < 0.0) || (x > 0.6 && x < 0.6 + d2)))
+    };
+    for w in 0..p.fluid_start() {
+        let (x, z) = (p.pos[w].x, p.pos[w].y);
+        let p_w = c.b_tait * ((p.rho[w] / c.rho0).powf(c.gamma) - 1.0);
+        if z > 0.3 + c.support {
+            assert_eq!(p.rho[w], c.rho0, "dry wall particle at ({x}, {z})");
+            dry += 1;
+        } else if inner_layers(x, z) && z < 0.25 {
+            let hydro = c.rho0 * c.gravity * (0.3 - z);
+            assert!((p_w - hydro).abs() < 0.01 * c.rho0 * c.gravity * 0.3, "({x}, {z}): {p_w} Pa vs {hydro} Pa");
+            checked += 1;
+        }
+    }
+    assert!(checked > 50 && dry > 10, "{checked} wet and {dry} dry wall particles checked");
 }
 
 /// Spread (standard deviation over mean) of the fluid's kernel volume sum at the fluid
@@ -150,8 +180,13 @@ fn shifting_evens_out_a_disordered_particle_set() {
 #[test]
 fn still_tank_stays_still_for_half_a_second() {
     // dp 0.03 (10 layers): half a second is about 1,000 steps, which a debug build runs in seconds
-    for integrator in [r#"{"scheme": "symplectic"}"#, r#"{"scheme": "verlet"}"#] {
-        let mut sim = sph_core::build(tank_at(0.03, &format!(r#", "integrator": {integrator}"#))).expect("build");
+    let runs = [
+        r#", "integrator": {"scheme": "symplectic"}"#,
+        r#", "integrator": {"scheme": "verlet"}"#,
+        r#", "integrator": {"scheme": "verlet"}, "boundary": {"model": "adami"}"#,
+    ];
+    for integrator in runs {
+        let mut sim = sph_core::build(tank_at(0.03, integrator)).expect("build");
         sim.run_until(0.5).expect("stable");
         let kinds = sim.kinds();
         let vel = sim.velocities();

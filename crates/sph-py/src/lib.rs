@@ -178,6 +178,7 @@ impl Simulation {
         d.set_item("viscosity", p.viscosity)?;
         d.set_item("diffusion", p.diffusion)?;
         d.set_item("integrator", p.integrator)?;
+        d.set_item("boundary", p.boundary)?;
         d.set_item("shifting", p.shifting)?;
         d.set_item("dt_floor", p.dt_floor)?;
         Ok(d)
