@@ -207,7 +207,8 @@ def test_failed_flume_keeps_gauges_csv(tmp_path: Path) -> None:
     custom = tmp_path / "elsewhere" / "good.npz"
     custom.parent.mkdir()
     proc = run_cli("run", "flume2d", "--set", "dp=0.05", "--set", "coefsound=1", "--set",
-                   "until=1", "--sample-every", "0.01", "--quiet", "--out", str(out),
+                   "until=1", "--set", "sample_interval=0.002", "--sample-every", "0.01", "--quiet",
+                   "--out", str(out),
                    "--save-last-good", str(custom))
     assert proc.returncode == 1, proc.stderr
     summary = json.loads((out / "summary.json").read_text())

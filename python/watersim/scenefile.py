@@ -752,7 +752,7 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
            "The numerical fields are those of the dam break above, with the defaults below, "
            "except `energy_growth_limit`: the core's energy monitor does not run in a scene "
            "with a paddle, so a flume refuses it.",
-           FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "dp",
+           FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "boundary", "dp",
                                                           "until")) + ("energy_growth_limit",))
     yield ("`[flume]`", "", Flume, ())
     for cls in (PlaneBeach, ProfileBeach, MeshBeach):

@@ -1149,6 +1149,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.p.id.copy_from_slice(&c.ids);
         self.p.kind.copy_from_slice(&c.kinds);
         self.time = c.time;
+        // a checkpoint is taken between steps, where the paddle stands at its pose of `time`
+        self.paddle_time = c.time;
         self.steps = c.steps;
         self.dt = c.dt;
         self.n_excluded = c.n_excluded;
