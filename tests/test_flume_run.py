@@ -121,8 +121,9 @@ def test_every_builtin_case_builds(case: str) -> None:
     assert len({g["name"] for g in specs}) == len(specs)
     params = sim.params()
     steps = setup.until / (setup.cfl * params["h"] / params["c0"])
-    # coarse defaults: at most about 3.5e8 particle-steps (a few minutes on two cores)
-    assert steps * sim.n_particles < 3.5e8, (case, steps, sim.n_particles)
+    # coarse defaults: at most about 4e8 particle-steps (a few minutes on two cores; flume3d,
+    # nine particles across its width, is the largest: about 3.8e8)
+    assert steps * sim.n_particles < 4e8, (case, steps, sim.n_particles)
     if case in ("kimmoun2d", "stansby2d", "solitary2d"):
         assert any(g["type"] == "runup" for g in specs)
     if case == "stansby2d":

@@ -353,25 +353,24 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
 def case_flume3d(s: _Settings) -> FlumeScene:
     """A narrow, coarse 3D flume with a piston: the wave-maker in 3D.
 
-    d = 0.2 m, width 0.2 m (seven particles across), T = 1.0 s (L = 1.21 m), H = 0.05 m,
+    d = 0.2 m, width 0.2 m (nine particles across), T = 1.0 s (L = 1.21 m), H = 0.05 m,
     second-order piston with a one-period ramp; flume 1.8 L long with a 0.55 L damping zone,
     walls 0.27 m high; gauges at 0.5 L on the centre line and at 1 L at y = 1/4, 1/2 and 3/4 of
-    the width (the wave should stay long-crested), taking the highest particle (the kernel
-    method reads low within 2h of a side wall, whose particles it does not count: everywhere in
-    a flume this narrow). Laminar viscosity with water's nu = 1e-6 m^2/s instead of the flumes'
-    artificial viscosity: at this h, alpha = 0.01 acts like nu ~ alpha h c0 / 10 ~ 9e-4 m^2/s,
-    and the boundary layers of the side walls and floor of a channel this narrow then damp the
-    wave (Hunt 1952: about 30 % per wavelength, against 1 % with water's viscosity); measured,
-    the wave at 1 L gains 8-12 % of H (measured before 2026-11-30 with dp = 0.03 m and width
-    0.24 m, which filled 0.21 m of water). dp = 0.2 / 7 = 0.028571 m (7 layers deep and 7
-    columns across; nominal 0.03 m, H/dp = 1.75; about 21,000 particles, 3,700 of them fluid),
-    until = ramp + arrival at L + 5 periods (7.3 s: three waves analysed at 1 L).
-    analysis.json's ``across_width`` gives the spread across the width of the zero-crossing
-    heights and of the first-harmonic heights ``2 a1`` (:func:`across_width`); with the particle
-    method the zero-crossing heights on the centre line take stray particles, the first harmonic
-    does not. Measured results and what they miss in docs/wave-flume.md: at this default
-    (2026-11-30) H1 at 1 L is 13-21 % below the target and the spread across the width 7.6 % of
-    H, outside the 10 % and 5 % that issue 3 asks.
+    the width (the wave should stay long-crested), kernel method (its sum counts the walls'
+    share of the kernel, so it reads right next to the side walls). Adami's walls (the flume
+    default): with DBC walls the water next to a side wall could not rise above the still
+    water (25 % of the wave height there, docs/wave-flume.md, "Walls that remember").
+    Laminar viscosity with water's nu = 1e-6 m^2/s instead of the flumes' artificial
+    viscosity: at this h, alpha = 0.01 acts like nu ~ alpha h c0 / 10 ~ 9e-4 m^2/s, and the
+    boundary layers of the side walls and floor of a channel this narrow then damp the wave
+    (Hunt 1952: about 30 % per wavelength, against 1 % with water's viscosity). dp = 0.2 / 9
+    = 0.022222 m (9 layers deep and 9 columns across; nominal 0.022 m, H/dp = 2.25; 34,543
+    particles, 7,938 of them fluid), until = ramp + arrival at L + 5 periods (7.31 s: three
+    waves analysed at 1 L). analysis.json's ``across_width`` gives the spread across the width
+    of the zero-crossing heights and of the first-harmonic heights ``2 a1``
+    (:func:`across_width`). Measured (2026-11-30, docs/wave-flume.md): at 1 L the
+    zero-crossing heights are 7.8 % and 8.2 % below the target at the quarter widths and on
+    the centre line, spread 0.4 % of H (first harmonic: -10.2 %, -9.9 %, spread 0.3 %).
     """
     wave = s.apply("wave", RegularWave(height=0.05, period=1.0))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=1.0))
@@ -383,10 +382,9 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     damping = s.apply("damping", DampingZone(length=round(0.55 * wl, 2)))
     flume = Flume(length=length, depth=depth, width=width, height=height, damping=damping)
     y_mid = round(0.5 * width, 4)
-    gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid, method="particle")]
-    gauges += [ElevationGauge(round(wl, 3), y=round(f * width, 4), method="particle")
-               for f in (0.25, 0.5, 0.75)]
-    num = s.numerics(dp=lattice_dp(depth, 0.03, width), coefsound=10.0, viscosity="laminar",
+    gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid)]
+    gauges += [ElevationGauge(round(wl, 3), y=round(f * width, 4)) for f in (0.25, 0.5, 0.75)]
+    num = s.numerics(dp=lattice_dp(depth, 0.022, width), coefsound=10.0, viscosity="laminar",
                      nu=1e-6)
     return _finish(s, 5.0, wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
