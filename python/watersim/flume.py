@@ -307,8 +307,8 @@ class ProfileBeach:
 class MeshBeach:
     """Bathymetry from a closed triangle mesh (3D flumes only): an STL file, or NumPy vertices
     and triangles. The solid is the inside of the mesh; the core samples it into wall particles
-    (``layers`` deep below its surface) and keeps the water dp/2 off it, as for the other
-    beaches. Anything the core needs is checked when the beach is made: the file is read with
+    (``layers`` deep below its surface) and fills every lattice site above it with water, as
+    for the other beaches. Anything the core needs is checked when the beach is made: the file is read with
     meshio, exactly repeated vertices are merged (an STL stores each triangle's corners), and
     the surface must be closed, consistently oriented with its triangles facing outward
     (positive enclosed volume), without degenerate triangles; the flume then checks that the
