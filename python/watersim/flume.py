@@ -308,11 +308,11 @@ class MeshBeach:
     """Bathymetry from a closed triangle mesh (3D flumes only): an STL file, or NumPy vertices
     and triangles. The solid is the inside of the mesh; the core samples it into wall particles
     (``layers`` deep below its surface) and fills every lattice site above it with water, as
-    for the other beaches. Anything the core needs is checked when the beach is made: the file is read with
-    meshio, exactly repeated vertices are merged (an STL stores each triangle's corners), and
-    the surface must be closed, consistently oriented with its triangles facing outward
-    (positive enclosed volume), without degenerate triangles; the flume then checks that the
-    mesh lies inside it (x in [0, length], y in [0, width], z >= 0, below the walls) and clear
+    for the other beaches. Anything the core needs is checked when the beach is made: the
+    file is read with meshio, exactly repeated vertices are merged (an STL stores each
+    triangle's corners), and the surface must be closed, consistently oriented with its
+    triangles facing outward (positive enclosed volume), without degenerate triangles; the
+    flume then checks that the mesh lies inside it (x in [0, length], y in [0, width], z >= 0, below the walls) and clear
     of the paddle's stroke.
 
     The analysis reads the bed under each gauge from the mesh (its highest surface over the
