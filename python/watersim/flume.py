@@ -312,8 +312,8 @@ class MeshBeach:
     file is read with meshio, exactly repeated vertices are merged (an STL stores each
     triangle's corners), and the surface must be closed, consistently oriented with its
     triangles facing outward (positive enclosed volume), without degenerate triangles; the
-    flume then checks that the mesh lies inside it (x in [0, length], y in [0, width], z >= 0, below the walls) and clear
-    of the paddle's stroke.
+    flume then checks that the mesh lies inside it (x in [0, length], y in [0, width],
+    z >= 0, below the walls) and clear of the paddle's stroke.
 
     The analysis reads the bed under each gauge from the mesh (its highest surface over the
     gauge, 0 where the gauge misses it); the shoreline, toe, beach slope and automatic run-up
