@@ -154,9 +154,8 @@ enum History<D: Dim> {
 struct ShiftState<D: Dim> {
     /// `A h` of Skillen et al.'s `D = A h |u| dt`.
     a_h: Real,
-    /// Free-surface threshold and the bulk's particle divergence (`dim`).
+    /// Free-surface threshold of the particle divergence (the bulk's is `dim`).
     threshold: Real,
-    bulk: Real,
     grad: Vec<D::V>,
     div: Vec<Real>,
 }
@@ -267,7 +266,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let shift = scene.shifting.map(|sh| ShiftState {
             a_h: sh.coefficient * c.h,
             threshold: sh.threshold(D::DIM),
-            bulk: D::DIM as Real,
             grad: vec![D::V::ZERO; n_fluid],
             div: vec![0.0; n_fluid],
         });
@@ -333,9 +331,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             *x = r;
             x.set(0, xz[0]);
             x.set(up, xz[1]);
-            *v = D::V::ZERO;
-            v.set(0, uw[0]);
-            v.set(up, uw[1]);
+            *v = in_flume_plane::<D>(uw);
         });
     }
 
@@ -357,9 +353,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             let r = reference[(id - n_fixed) as usize];
             let (_, u0) = before.apply(r.get(0), r.get(up));
             let (_, u1) = after.apply(r.get(0), r.get(up));
-            *a = D::V::ZERO;
-            a.set(0, (u1[0] - u0[0]) / (2.0 * DT));
-            a.set(up, (u1[1] - u0[1]) / (2.0 * DT));
+            *a = in_flume_plane::<D>([(u1[0] - u0[0]) / (2.0 * DT), (u1[1] - u0[1]) / (2.0 * DT)]);
         });
     }
 
@@ -752,7 +746,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let fs = self.p.fluid_start();
         let (_, pos_f) = self.p.pos.split_at_mut(fs);
         let vel_f = &self.p.vel[fs..];
-        let span = shift.bulk - shift.threshold;
+        let span = D::DIM as Real - shift.threshold;
         pos_f.par_iter_mut().zip(vel_f.par_iter()).zip(shift.grad.par_iter().zip(shift.div.par_iter())).for_each(
             |((x, v), (&grad, &div))| {
                 let surface = ((div - shift.threshold) / span).clamp(0.0, 1.0);
@@ -940,6 +934,15 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         }
         Ok(())
     }
+}
+
+/// A vector in the flume's x-z plane (the paddle moves in it): `xz[0]` along x, `xz[1]`
+/// vertical, zero across the width.
+fn in_flume_plane<D: Dim>(xz: [Real; 2]) -> D::V {
+    let mut v = D::V::ZERO;
+    v.set(0, xz[0]);
+    v.set(D::DIM - 1, xz[1]);
+    v
 }
 
 /// The read-only fields of a force or shifting pass over the particles `p`.
