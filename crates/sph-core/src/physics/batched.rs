@@ -186,7 +186,10 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         let mut p_term = own.p_rho2 + pb * inv_rhob * inv_rhob;
         if VISC == VISC_ARTIFICIAL {
             let cbar_rhobar = (own.sound_speed + cb) * inv_sum_rho;
-            p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
+            // `vr < 0 ? vr : 0` is `vr.min(0.0)` for every input (NaN gives 0 both ways),
+            // without the NaN blend
+            let approaching = if vr < 0.0 { vr } else { 0.0 };
+            p_term += -c.alpha * cbar_rhobar * (c.h * approaching * inv_r2_eta2);
         }
         let (mut ax, mut ay, mut az) = (-gx * p_term, -gy * p_term, -gz * p_term);
         if VISC != VISC_ARTIFICIAL {
@@ -215,12 +218,22 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
     if DIFF != DIFF_NONE && fluid {
         lane_add(&mut sums.diff, &s.out_diff[..n_pad]);
     }
-    for k0 in (0..n_pad).step_by(LANES) {
+    lane_max(&mut sums.visc, &s.out_visc[..n_pad]);
+    s.n = 0;
+}
+
+/// `max(lanes[k % LANES], terms[k])` into lane `k % LANES`. Written as a comparison, not
+/// `f64::max`: the same result for every input (the lanes start at 0 and a NaN term never
+/// wins), but one `vmaxpd` instead of a max and a NaN blend per four terms.
+#[inline(always)]
+fn lane_max(lanes: &mut [Real; LANES], terms: &[Real]) {
+    for chunk in terms.chunks_exact(LANES) {
         for l in 0..LANES {
-            sums.visc[l] = sums.visc[l].max(s.out_visc[k0 + l]);
+            if chunk[l] > lanes[l] {
+                lanes[l] = chunk[l];
+            }
         }
     }
-    s.n = 0;
 }
 
 /// Adds `terms[k]` to lane `k % LANES` (`terms.len()` is a multiple of `LANES`).
