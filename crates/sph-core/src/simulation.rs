@@ -664,6 +664,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn sort_group(&mut self, g: usize) {
         let range = self.group_range(g);
         if range.is_empty() {
+            // no particles, no cell starts (the groups' sizes never change during a run)
+            self.grid.release_group(g);
             return;
         }
         let s = &mut self.scratch;

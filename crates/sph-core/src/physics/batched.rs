@@ -264,6 +264,9 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
     s: &mut Scratch,
     sums: &mut Sums,
 ) {
+    if !grid.has_group(G) {
+        return;
+    }
     let support2 = c.support * c.support;
     let pa = f.pos[own.slot];
     for row in 0..s.rows.n {
