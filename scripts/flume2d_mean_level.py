@@ -22,6 +22,7 @@ import time
 
 import numpy as np
 
+import watersim.analysis as an
 import watersim.flume_cases as fc
 import watersim.wave_theory as wt
 
@@ -83,7 +84,11 @@ def analyse(path: str) -> None:
               f"({100 * abs(trend) * span / height:.1f} % of H); with the seiche fitted: "
               f"amplitude {1e3 * math.hypot(coef[2], coef[3]):.2f} mm, trend "
               f"{1e3 * coef[1] * span:+.2f} mm ({100 * abs(coef[1]) * span / height:.1f} % of H)")
-        print("    period means [mm]:", " ".join(f"{1e3 * v:+.1f}" for v in means))
+        waves = an.zero_crossing_waves(eta[sel[: n * per], j], t[sel[: n * per]])
+        hm = float(np.mean(waves.heights))
+        print(f"    wave height {hm:.4f} m ({100 * (hm / height - 1):+.1f} %),"
+              f" {waves.heights.size} waves; period means [mm]:",
+              " ".join(f"{1e3 * v:+.1f}" for v in means))
 
 
 if __name__ == "__main__":

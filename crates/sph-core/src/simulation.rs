@@ -1212,6 +1212,27 @@ mod batched_loop_tests {
         }
     }
 
+    /// Still water starts hydrostatic, at rest: density diffusion with the hydrostatic part
+    /// removed must add nothing, at the free surface and next to the bed as in the bulk.
+    /// (Fourtakas' density form, Eq. 13, gave every particle about +1 kg/m^3/s here: still
+    /// water expanded; docs/wave-flume.md, "The mean water level".)
+    #[test]
+    fn fourtakas_diffusion_leaves_still_water_alone() {
+        for boundary in ["dbc", "adami"] {
+            let json = format!(
+                r#"{{"dim": 2, "dp": 0.0375, "coefsound": 10, "tank": {{"min": [0, 0], "max": [1.5, 0.5]}},
+                    "fluid": [{{"min": [0, 0], "max": [1.5, 0.3]}}], "boundary": {{"model": "{boundary}"}},
+                    "diffusion": {{"model": "fourtakas", "delta": 0.1}}}}"#
+            );
+            let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene"))
+                .expect("solver");
+            s.compute_forces();
+            let fs = s.p.fluid_start();
+            let worst = s.p.drho[fs..].iter().fold(0.0 as Real, |m, d| m.max(d.abs()));
+            assert!(worst < 1e-6, "{boundary}: |drho/dt| up to {worst} kg/m^3/s in still water");
+        }
+    }
+
     fn dambreak(dim: usize, extra: &str) -> String {
         if dim == 2 {
             format!(

@@ -20,7 +20,7 @@
 use rayon::prelude::*;
 
 use super::eos::{pressure, sound_speed};
-use super::forces::{hydrostatic_density_difference, Fields, StepLimits};
+use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -84,6 +84,8 @@ struct Own {
     slot: usize,
     vel: [Real; 3],
     rho: Real,
+    /// Pressure.
+    p: Real,
     p_rho2: Real,
     sound_speed: Real,
 }
@@ -202,10 +204,11 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         s.out_acc[1][k] = ay;
         s.out_acc[2][k] = az;
         if DIFF != DIFF_NONE && fluid {
-            let mut drho_ba = rhob - own.rho;
-            if DIFF == DIFF_FOURTAKAS {
-                drho_ba -= hydrostatic_density_difference(c, if three { rz } else { ry });
-            }
+            let drho_ba = if DIFF == DIFF_FOURTAKAS {
+                hydrostatic_free_difference(c, pb - own.p, if three { rz } else { ry })
+            } else {
+                rhob - own.rho
+            };
             s.out_diff[k] = 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
         }
     }
@@ -332,7 +335,8 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: 
         *v = va.get(d);
     }
     let rho = f.rho[a];
-    let own = Own { slot: a, vel, rho, p_rho2: pressure(c, rho) / (rho * rho), sound_speed: sound_speed(c, rho) };
+    let p = pressure(c, rho);
+    let own = Own { slot: a, vel, rho, p, p_rho2: p / (rho * rho), sound_speed: sound_speed(c, rho) };
     let mut sums = Sums::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);

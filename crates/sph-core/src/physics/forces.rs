@@ -139,7 +139,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                 return StepLimits::NONE;
             }
             let (pa, va, rhoa) = (f.pos[a], f.vel[a], f.rho[a]);
-            let pa_rho2 = pressure(c, rhoa) / (rhoa * rhoa);
+            let pa_p = pressure(c, rhoa);
+            let pa_rho2 = pa_p / (rhoa * rhoa);
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
             let mut sum_acc = D::V::ZERO;
@@ -192,10 +193,11 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                         sum_acc += D::sym_dot(&tau_a, gw) + D::sym_dot(tb, gw);
                     }
                     if DIFF != DIFF_NONE && is_fluid {
-                        let mut drho_ba = rhob - rhoa;
-                        if DIFF == DIFF_FOURTAKAS {
-                            drho_ba -= hydrostatic_density_difference(c, r.vertical());
-                        }
+                        let drho_ba = if DIFF == DIFF_FOURTAKAS {
+                            hydrostatic_free_difference(c, pressure(c, rhob) - pa_p, r.vertical())
+                        } else {
+                            rhob - rhoa
+                        };
                         debug_assert!(DIFF == DIFF_MOLTENI || DIFF == DIFF_FOURTAKAS);
                         // r_ba . grad_a W_ab = -r_ab . grad_a W_ab = -r2 F > 0
                         sum_diff += 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
@@ -211,16 +213,17 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
         .reduce(|| StepLimits::NONE, StepLimits::merge)
 }
 
-/// `rho0 ((1 + x)^(1/gamma) - 1)` with `x = rho0 g z_ab / B` (Fourtakas et al. 2019 Eq. 13).
-///
-/// Within the kernel support `|x| <= rho0 g 2h / B = 2 g h gamma / c0^2`, about 1e-3 or less for
-/// `coefsound >= 10`, so the binomial series to fourth order is exact to ~1e-10 relative (far
-/// below the density noise it filters) and avoids a `powf` per pair.
+/// The density difference `rho_b - rho_a` of a pair without its hydrostatic part, taken in
+/// pressure: `(p_b - p_a - rho0 g z_ab) / c0^2`. Fourtakas et al. (2019) subtract the hydrostatic
+/// density difference about the free-surface state (Eq. 13);
+/// with Tait's curved equation of state that is exact only for pairs at the surface, and its
+/// even part in `z_ab` does not cancel between `ab` and `ba`: every pair adds density, and still
+/// water expands (docs/wave-flume.md, "The mean water level"). In pressure the hydrostatic
+/// field is exactly linear (`p = rho0 g depth` is how the water starts), so the difference is
+/// zero for every hydrostatic pair and odd in `ab`; its first-order term is Eq. 13's.
 #[inline(always)]
-pub(crate) fn hydrostatic_density_difference(c: &Constants, z_ab: Real) -> Real {
-    let x = c.fourtakas_gz * z_ab;
-    let [a1, a2, a3, a4] = c.fourtakas_series;
-    c.rho0 * x * (a1 + x * (a2 + x * (a3 + x * a4)))
+pub(crate) fn hydrostatic_free_difference(c: &Constants, p_ba: Real, z_ab: Real) -> Real {
+    (p_ba - c.rho0_g * z_ab) * c.inv_c0_2
 }
 
 /// Continuity for wall particles (dynamic boundary condition, Crespo et al. 2007): walls gather
@@ -350,16 +353,22 @@ mod tests {
     use crate::scene::Scene;
 
     #[test]
-    fn hydrostatic_series_matches_the_power_law() {
+    fn hydrostatic_free_difference_is_odd_and_zero_for_still_water() {
         let s = Scene::from_json(
             r#"{"dim": 2, "dp": 0.01, "coefsound": 10, "tank": {"min": [0, 0], "max": [1, 1]}, "fluid": [{"min": [0, 0], "max": [1, 0.5]}]}"#,
         )
         .expect("scene");
         let c = Constants::new(&s);
-        for z in [-2.0 * c.h, -0.3 * c.h, 0.0, 0.7 * c.h, 2.0 * c.h] {
-            let exact = c.rho0 * ((1.0 + c.fourtakas_gz * z).powf(1.0 / c.gamma) - 1.0);
-            let series = hydrostatic_density_difference(&c, z);
-            assert!((exact - series).abs() <= 1e-9 * exact.abs() + 1e-15, "z {z}: {exact} vs {series}");
+        let p_at = |depth: Real| super::super::eos::pressure(&c, super::super::eos::density_at_pressure(&c, c.rho0_g * depth));
+        for (za, zb) in [(0.45, 0.43), (0.1, 0.13), (0.02, 0.0)] {
+            let (pa, pb) = (p_at(0.5 - za), p_at(0.5 - zb));
+            let ab = hydrostatic_free_difference(&c, pb - pa, za - zb);
+            let ba = hydrostatic_free_difference(&c, pa - pb, zb - za);
+            assert!(ab.abs() < 1e-9 && ab == -ba, "{za} {zb}: {ab} {ba}");
         }
+        // a pair off hydrostatics: its density difference (first order, as Fourtakas' Eq. 13)
+        let (pa, pb) = (p_at(0.1), p_at(0.1) + 50.0);
+        let d = hydrostatic_free_difference(&c, pb - pa, 0.0);
+        assert!((d - 50.0 / (c.c0 * c.c0)).abs() < 1e-12, "{d}");
     }
 }

@@ -62,10 +62,9 @@ pub struct Constants {
     pub sps_blin: Real,
     /// Density diffusion: `delta h c0`.
     pub delta_h_c0: Real,
-    /// Fourtakas et al. (2019): `rho0 g / B`.
-    pub fourtakas_gz: Real,
-    /// Binomial series coefficients of `(1 + x)^(1/gamma) - 1` to fourth order.
-    pub fourtakas_series: [Real; 4],
+    /// `rho0 g` and `1 / c0^2`: the pressure form of the hydrostatic correction.
+    pub rho0_g: Real,
+    pub inv_c0_2: Real,
     /// `1 / rho0`.
     pub inv_rho0: Real,
     pub cfl: Real,
@@ -107,8 +106,8 @@ impl Constants {
             sps_smag: (cs * scene.dp).powi(2),
             sps_blin: 2.0 / 3.0 * ci * scene.dp * scene.dp,
             delta_h_c0: delta * h * c0,
-            fourtakas_gz: scene.rho0 * scene.gravity / b_tait,
-            fourtakas_series: binomial_series(1.0 / scene.gamma),
+            rho0_g: scene.rho0 * scene.gravity,
+            inv_c0_2: 1.0 / (c0 * c0),
             inv_rho0: 1.0 / scene.rho0,
             cfl: scene.cfl,
             density_band: scene.density_band,
@@ -116,11 +115,3 @@ impl Constants {
     }
 }
 
-/// The first four coefficients of `(1 + x)^e - 1 = e x + e (e - 1)/2 x^2 + ...`.
-fn binomial_series(e: Real) -> [Real; 4] {
-    let a1 = e;
-    let a2 = a1 * (e - 1.0) * 0.5;
-    let a3 = a2 * (e - 2.0) * (1.0 / 3.0);
-    let a4 = a3 * (e - 3.0) * 0.25;
-    [a1, a2, a3, a4]
-}
