@@ -26,7 +26,10 @@ Default numerics, shared by every case, and why:
   to any data set.
 - ``diffusion="fourtakas"``, ``delta=0.1``: density diffusion of Fourtakas et al. (2019), which
   removes the hydrostatic part of the density difference (so it does not pull a still tank
-  towards uniform density near the free surface); delta = 0.1 is the standard value
+  towards uniform density near the free surface). The hydrostatic part is taken in pressure,
+  ``(p_b - p_a - rho0 g z_ab) / c0^2``: zero for every pair of still water, where the paper's
+  density form (Eq. 13) adds density at depth and still water slowly expands (docs/wave-flume.md,
+  "The mean water level"); delta = 0.1 is the standard value
   (Molteni & Colagrossi 2009; Antuono et al. 2010).
 - ``integrator="symplectic"``: second-order, time-reversible scheme, the DualSPHysics default.
 - ``rho0=1000`` kg/m^3, ``gravity=9.81`` m/s^2.

@@ -43,7 +43,8 @@ pub enum Diffusion {
     None,
     /// Molteni & Colagrossi (2009).
     Molteni { delta: Real },
-    /// Fourtakas et al. (2019): the hydrostatic part of the density difference is removed.
+    /// Fourtakas et al. (2019): the hydrostatic part of the density difference is removed,
+    /// taken in pressure (`physics::forces::hydrostatic_free_difference`).
     Fourtakas { delta: Real },
 }
 
