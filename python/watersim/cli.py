@@ -534,6 +534,9 @@ def _scaled_to(build: Callable[[float], Simulation], dp: float, dim: int, n_targ
         if abs(n - n_target) <= 0.03 * n_target:
             break
         dp *= (n / n_target) ** (1.0 / dim)
+        # one simulation alive at a time: otherwise the process's peak resident memory, which
+        # `watersim bench` reports next to the counted bytes, holds two of them
+        del sim
         sim = build(dp)
     return sim
 
