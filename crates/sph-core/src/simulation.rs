@@ -1214,8 +1214,9 @@ mod batched_loop_tests {
 
     /// Still water starts hydrostatic, at rest: density diffusion with the hydrostatic part
     /// removed must add nothing, at the free surface and next to the bed as in the bulk.
-    /// (Fourtakas' density form, Eq. 13, gave every particle about +1 kg/m^3/s here: still
-    /// water expanded; docs/wave-flume.md, "The mean water level".)
+    /// (Fourtakas' density form, Eq. 13, gives every pair a positive leftover here, of order
+    /// 1 kg/m^3/s per particle by the estimate in docs/wave-flume.md, "The mean water level":
+    /// still water expanded.)
     #[test]
     fn fourtakas_diffusion_leaves_still_water_alone() {
         for boundary in ["dbc", "adami"] {
