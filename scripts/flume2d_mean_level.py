@@ -61,11 +61,11 @@ def analyse(path: str) -> None:
           f"first seiche {seiche:.2f} s")
     dt = float(t[1] - t[0])
     per = round(period / dt)
+    cg = float(wt.group_velocity(period, depth))
     for j, x in enumerate(xs):
         n_l = x / wl
         if min(abs(n_l - n) for n in (1, 2, 3)) > 0.01:
             continue
-        cg = float(wt.group_velocity(period, depth))
         start = meta["ramp"] + x / cg + period
         sel = np.flatnonzero(t >= start)
         n = sel.size // per

@@ -310,6 +310,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         solver.sort_group(GROUP_FIXED);
         solver.sort_group(GROUP_MOVING);
         solver.sort_group(GROUP_FLUID);
+        // a group without particles needs no cell starts (the groups' sizes never change)
+        for g in [GROUP_FIXED, GROUP_MOVING, GROUP_FLUID] {
+            if solver.group_range(g).is_empty() {
+                solver.grid.release_group(g);
+            }
+        }
         solver.sample_gauges();
         Ok(solver)
     }
@@ -664,8 +670,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn sort_group(&mut self, g: usize) {
         let range = self.group_range(g);
         if range.is_empty() {
-            // no particles, no cell starts (the groups' sizes never change during a run)
-            self.grid.release_group(g);
             return;
         }
         let s = &mut self.scratch;

@@ -174,7 +174,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     max_visc = max_visc.max(visc_rate.abs());
                     // P_b / rho_b^2 from the pair's reciprocal of rho_b (pressure is not stored)
                     let inv_rhob = rr * r2e * sum_rho * inv_all;
-                    let mut p_term = pa_rho2 + pressure(c, rhob) * inv_rhob * inv_rhob;
+                    let pb = pressure(c, rhob);
+                    let mut p_term = pa_rho2 + pb * inv_rhob * inv_rhob;
                     if VISC == VISC_ARTIFICIAL {
                         // Pi_ab acts on approaching pairs only (v_ab.r_ab < 0); min() instead of
                         // a branch: the sign is unpredictable, and for v_ab.r_ab >= 0 the term
@@ -194,7 +195,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     }
                     if DIFF != DIFF_NONE && is_fluid {
                         let drho_ba = if DIFF == DIFF_FOURTAKAS {
-                            hydrostatic_free_difference(c, pressure(c, rhob) - pa_p, r.vertical())
+                            hydrostatic_free_difference(c, pb - pa_p, r.vertical())
                         } else {
                             rhob - rhoa
                         };
