@@ -50,3 +50,12 @@ def test_bench_reports_the_comparison_with_dualsphysics() -> None:
 def test_bench_refuses_overrides_of_a_reference_case() -> None:
     proc = run_cli("bench", "--case", "dsph-piston2d", "--set", "dp=0.01")
     assert proc.returncode == 2 and "--set" in proc.stderr
+
+
+def test_a_reference_case_takes_the_force_precision() -> None:
+    proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps", "2",
+                   "--set", "force_precision=f32", "--json", env={"RAYON_NUM_THREADS": "1"})
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["force_precision"] == "f32"
+    proc = run_cli("bench", "--case", "dsph-piston2d", "--set", "force_precision=f16")
+    assert proc.returncode == 2 and "force_precision" in proc.stderr

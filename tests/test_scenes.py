@@ -28,6 +28,7 @@ SCENE_KEYS = {
     "integrator",
     "shifting",
     "boundary",
+    "force_precision",
     "tank",
     "obstacles",
     "fluid",
@@ -42,6 +43,22 @@ def test_scene_error_is_the_cores_and_a_value_error() -> None:
     assert watersim.SceneError is _core.SceneError
     assert issubclass(SceneError, ValueError)
     assert issubclass(watersim.InstabilityError, RuntimeError)
+
+
+def test_force_precision_reaches_the_core_and_bad_values_are_named() -> None:
+    assert Tank().to_scene()["force_precision"] == "f64"
+    sim = watersim.Simulation(Tank(dp=0.05, force_precision="f32").to_scene())
+    assert sim.params()["force_precision"] == "f32"
+    assert watersim.Simulation(Tank(dp=0.05).to_scene()).params()["force_precision"] == "f64"
+    with pytest.raises(SceneError, match="^force_precision:"):
+        Tank(force_precision="f16")
+    # the SPS closure has no f32 loop: refused, not silently run in f64
+    with pytest.raises(SceneError, match="^force_precision:"):
+        Tank(force_precision="f32", viscosity="laminar_sps")
+    scene = {**Tank(dp=0.05).to_scene(), "force_precision": "f32",
+             "viscosity": {"model": "laminar_sps", "nu": 1e-6, "cs": 0.12, "ci": 0.0066}}
+    with pytest.raises(SceneError, match="force_precision"):
+        watersim.Simulation(scene)
 
 
 def test_shifting_reaches_the_core_and_bad_values_are_named() -> None:

@@ -65,7 +65,7 @@ from .output import RunLog, RunOutputs
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
-from .scenes import DamBreak, SceneBuilder, Tank
+from .scenes import FORCE_PRECISIONS, DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 from .stress import add_parser as add_stress_parser
 from .validation import sweep as _validation
@@ -541,19 +541,35 @@ def _scaled_to(build: Callable[[float], Simulation], dp: float, dim: int, n_targ
     return sim
 
 
+def _dsph_force_precision(case: str, settings: list[str]) -> str:
+    """The one override a DualSPHysics case takes: ``force_precision`` (DualSPHysics itself
+    forms its forces in f32, WaterSim's default is f64)."""
+    precision = "f64"
+    for item in settings:
+        key, _, value = item.partition("=")
+        if key.strip() != "force_precision":
+            raise CliError(
+                f"--set: {case} reproduces DualSPHysics' settings exactly and takes no "
+                f"override but force_precision, got {item!r} (use --particles N to scale it)"
+            )
+        precision = value.strip()
+        if precision not in FORCE_PRECISIONS:
+            raise CliError(
+                f"--set: force_precision must be one of {', '.join(FORCE_PRECISIONS)}, "
+                f"got {precision!r}"
+            )
+    return precision
+
+
 def _bench_simulation(args: argparse.Namespace) -> Simulation:
     """The simulation ``watersim bench`` times: a built-in dam break or a DualSPHysics case."""
     if args.case in DSPH_CASES:
-        if args.set:
-            raise CliError(
-                f"--set: {args.case} reproduces DualSPHysics' settings exactly and takes no "
-                "overrides (use --particles N to scale it)"
-            )
+        precision = _dsph_force_precision(args.case, args.set or [])
         spec = DSPH_CASES[args.case]
         dim = int(dsph_scene(args.case)["dim"])
 
         def build(dp: float) -> Simulation:
-            return Simulation(dsph_scene(args.case, dp))
+            return Simulation({**dsph_scene(args.case, dp), "force_precision": precision})
 
         return _scaled_to(build, spec.dp, dim, args.particles) if args.particles else build(spec.dp)
     builder = builder_from_args(args.case, args.set or [])
@@ -617,6 +633,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         "viscosity": sim.scene["viscosity"]["model"],
         "diffusion": sim.scene["diffusion"]["model"],
         "integrator": sim.scene["integrator"]["scheme"],
+        "force_precision": sim.scene.get("force_precision", "f64"),
         "sim_time": sim.time,
         "peak_rss_bytes": _peak_rss_bytes(),
         "version": __version__,

@@ -71,6 +71,7 @@ from .flume import (
 from .scenes import (
     BOUNDARY_MODELS,
     DIFFUSION_MODELS,
+    FORCE_PRECISIONS,
     INTEGRATORS,
     KERNELS,
     VISCOSITY_MODELS,
@@ -125,6 +126,7 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SceneBuilder, "diffusion"): DIFFUSION_MODELS,
     (SceneBuilder, "integrator"): INTEGRATORS,
     (SceneBuilder, "boundary"): BOUNDARY_MODELS,
+    (SceneBuilder, "force_precision"): FORCE_PRECISIONS,
     (IrregularWave, "spectrum"): tuple(SPECTRA),
     (Piston, "ramp"): RAMPS,
     (Flap, "ramp"): RAMPS,

@@ -56,6 +56,7 @@ __all__ = [
     "DIFFUSION_MODELS",
     "INTEGRATORS",
     "BOUNDARY_MODELS",
+    "FORCE_PRECISIONS",
     "KERNELS",
     "VISCOSITY_MODELS",
     "DamBreak",
@@ -75,6 +76,12 @@ BOUNDARY_MODELS: tuple[str, ...] = ("dbc", "adami")
 """Wall boundary models the core knows: ``"dbc"``, the dynamic boundary condition (Crespo et
 al. 2007; wall particles integrate continuity); ``"adami"``, Adami, Hu & Adams (2012; wall
 particles take the pressure extrapolated from their fluid neighbours at every step)."""
+
+FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
+"""Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
+register instead of four, as DualSPHysics forms its forces; the state stays f64). Not with
+``viscosity="laminar_sps"``, whose loop is f64 only. ``ForcePrecision`` in
+``crates/sph-core/src/scene.rs``; docs/benchmarks.md measures speed and accuracy."""
 
 MAX_DENSITY_BAND = 1.0
 """Largest ``density_band`` accepted: the band ``rho0 (1 -+ density_band)`` then reaches
@@ -170,6 +177,8 @@ class SceneBuilder:
         euler_every: Verlet: one Euler step every this many steps.
         boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see :data:`BOUNDARY_MODELS`
             and ``Boundary`` in ``crates/sph-core/src/scene.rs``).
+        force_precision: arithmetic of the force loop's pair terms, ``"f64"`` or ``"f32"``
+            (see :data:`FORCE_PRECISIONS`).
         shifting: particle shifting's coefficient ``A`` [-] (Lind et al. 2012 with Skillen et
             al. 2013's ``D = A h |u| dt``; 2 is DualSPHysics' value, 1-6 the proposed range);
             ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene.rs``.
@@ -212,6 +221,7 @@ class SceneBuilder:
     integrator: str = "symplectic"
     euler_every: int = 40
     boundary: str = "dbc"
+    force_precision: str = "f64"
     shifting: float | None = None
     shifting_threshold: float | None = None
     rho0: float = 1000.0
@@ -265,6 +275,12 @@ class SceneBuilder:
         _choice("integrator", self.integrator, INTEGRATORS)
         _integer("euler_every", self.euler_every, 1)
         _choice("boundary", self.boundary, BOUNDARY_MODELS)
+        _choice("force_precision", self.force_precision, FORCE_PRECISIONS)
+        if self.force_precision == "f32" and self.viscosity == "laminar_sps":
+            raise SceneError(
+                "force_precision: f32 pair terms exist in the batched force loop only; the "
+                "laminar_sps closure runs the f64 loop, so use f64"
+            )
         if self.shifting is not None:
             _positive("shifting", self.shifting)
         if self.shifting_threshold is not None:
@@ -357,6 +373,7 @@ class SceneBuilder:
             "diffusion": diffusion,
             "integrator": integrator,
             "boundary": {"model": self.boundary},
+            "force_precision": self.force_precision,
             "shifting": None if self.shifting is None else {
                 "coefficient": float(self.shifting),
                 "surface_threshold": (None if self.shifting_threshold is None

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::math::Real;
+use crate::math::{PairFloat, Real};
 
 /// Kernel choice of a scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -36,14 +36,24 @@ pub trait Kernel: Copy + Send + Sync + 'static {
     /// `W(r)`.
     fn w(&self, r: Real) -> Real;
     /// `(dW/dr) / r` for `0 < r`; finite at `r -> 0`. Zero for `r >= 2h`.
-    fn grad_factor(&self, r: Real) -> Real;
+    #[inline(always)]
+    fn grad_factor(&self, r: Real) -> Real {
+        self.grad_factor_in::<Real>(r)
+    }
     /// Whether [`Kernel::grad_factor_inv_r`] uses `1/r` (the pair loop then folds it into the
     /// pair's single division).
     const NEEDS_INV_R: bool = false;
     /// [`Kernel::grad_factor`] given `1/r` as well.
     #[inline(always)]
-    fn grad_factor_inv_r(&self, r: Real, _inv_r: Real) -> Real {
-        self.grad_factor(r)
+    fn grad_factor_inv_r(&self, r: Real, inv_r: Real) -> Real {
+        self.grad_factor_inv_r_in::<Real>(r, inv_r)
+    }
+    /// [`Kernel::grad_factor`] in the pair loop's float type (`f64`: the same operations).
+    fn grad_factor_in<F: PairFloat>(&self, r: F) -> F;
+    /// [`Kernel::grad_factor_inv_r`] in the pair loop's float type.
+    #[inline(always)]
+    fn grad_factor_inv_r_in<F: PairFloat>(&self, r: F, _inv_r: F) -> F {
+        self.grad_factor_in(r)
     }
 }
 
@@ -78,20 +88,22 @@ impl Kernel for CubicSpline {
         }
     }
     #[inline(always)]
-    fn grad_factor(&self, r: Real) -> Real {
-        self.grad_factor_inv_r(r, 1.0 / r)
+    fn grad_factor_in<F: PairFloat>(&self, r: F) -> F {
+        self.grad_factor_inv_r_in(r, F::of(1.0) / r)
     }
     const NEEDS_INV_R: bool = true;
     #[inline(always)]
-    fn grad_factor_inv_r(&self, r: Real, inv_r: Real) -> Real {
-        let q = r * self.inv_h;
-        let c = self.alpha_d * self.inv_h * self.inv_h;
+    fn grad_factor_inv_r_in<F: PairFloat>(&self, r: F, inv_r: F) -> F {
+        let q = r * F::of(self.inv_h);
+        let c = F::of(self.alpha_d * self.inv_h * self.inv_h);
         // d/dq (1 - 3/2 q^2 + 3/4 q^3) / q = -3 + 9/4 q inside q < 1, -3/4 (2 - q)^2 / q outside;
         // both are computed and one selected: the branch would be mispredicted in the pair loop.
-        let inner = c * (-3.0 + 2.25 * q);
-        let t = (2.0 - q).max(0.0);
-        let outer = c * (-0.75 * t * t * self.h * inv_r); // 1/q = h/r
-        if q < 1.0 {
+        let inner = c * (F::of(-3.0) + F::of(2.25) * q);
+        let t = F::of(2.0) - q;
+        // `max(t, 0)` as a comparison (the same value for every input, no NaN blend)
+        let t = if t > F::of(0.0) { t } else { F::of(0.0) };
+        let outer = c * (F::of(-0.75) * t * t * F::of(self.h) * inv_r); // 1/q = h/r
+        if q < F::of(1.0) {
             inner
         } else {
             outer
@@ -134,14 +146,14 @@ impl Kernel for WendlandC2 {
         }
     }
     #[inline(always)]
-    fn grad_factor(&self, r: Real) -> Real {
-        let q = r * self.inv_h;
-        if q < 2.0 {
+    fn grad_factor_in<F: PairFloat>(&self, r: F) -> F {
+        let q = r * F::of(self.inv_h);
+        if q < F::of(2.0) {
             // dW/dq = -5 q alpha_D (1 - q/2)^3, so (dW/dr)/r = -5 alpha_D (1 - q/2)^3 / h^2.
-            let t = 1.0 - 0.5 * q;
-            self.grad_coef * (t * t * t)
+            let t = F::of(1.0) - F::of(0.5) * q;
+            F::of(self.grad_coef) * (t * t * t)
         } else {
-            0.0
+            F::of(0.0)
         }
     }
 }

@@ -101,6 +101,62 @@ macro_rules! impl_vector {
 impl_vector!(DVec2, 2);
 impl_vector!(DVec3, 3);
 
+/// Floating-point type of the fluid force loop's pair arithmetic: `f64` (the state's precision)
+/// or `f32` (twice the SIMD width; DualSPHysics' choice for velocities, densities and forces).
+/// Positions and the state stay `f64`; only the per-pair terms are formed in this type.
+pub trait PairFloat:
+    Copy
+    + Default
+    + Debug
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + Send
+    + Sync
+    + 'static
+{
+    /// Partial sums per particle: one AVX2 register of this type.
+    const LANES: usize;
+    /// Whether this is the single-precision type (the pair terms then take density differences
+    /// from `rho/rho0 - 1`, formed in f64, instead of subtracting two densities near `rho0`).
+    const SINGLE: bool;
+    fn of(x: Real) -> Self;
+    fn to_real(self) -> Real;
+    fn sqrt(self) -> Self;
+    fn abs(self) -> Self;
+}
+
+macro_rules! impl_pair_float {
+    ($t:ty, $lanes:expr, $single:expr) => {
+        impl PairFloat for $t {
+            const LANES: usize = $lanes;
+            const SINGLE: bool = $single;
+            #[inline(always)]
+            fn of(x: Real) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_real(self) -> Real {
+                self as Real
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+        }
+    };
+}
+impl_pair_float!(f64, 4, false);
+impl_pair_float!(f32, 8, true);
+
 /// Symmetric tensor storage for the SPS stress (3 components in 2D, 6 in 3D).
 pub trait SymTensor: Copy + Send + Sync + Default + Debug + 'static {}
 impl SymTensor for [Real; 3] {}

@@ -80,6 +80,21 @@ pub enum Boundary {
     Adami,
 }
 
+/// Floating-point type of the fluid force loop's pair arithmetic. The state (positions,
+/// velocities, densities) and the sums over neighbours stay in f64 either way.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForcePrecision {
+    /// Every pair term in f64.
+    #[default]
+    F64,
+    /// Pair terms in f32, eight to an AVX2 register instead of four, as DualSPHysics forms
+    /// its forces. Neighbour offsets are taken in f64 before rounding, and pressures and
+    /// density differences from `rho/rho0 - 1` formed in f64, so no term loses more than f32's
+    /// relative precision (about 6e-8); docs/benchmarks.md measures the effect.
+    F32,
+}
+
 /// Fickian particle shifting (Lind et al. 2012, J. Comput. Phys. 231, Eqs. 22-23): after each
 /// step a fluid particle moves by `dr = -a_fs D grad C`, with the concentration gradient
 /// `grad C = sum_b V_b grad W_ab` over fluid and wall neighbours and Skillen et al. (2013)'s
@@ -193,6 +208,9 @@ pub struct Scene {
     /// Wall boundary model; DBC by default.
     #[serde(default = "default_boundary")]
     pub boundary: Boundary,
+    /// Arithmetic of the force loop's pair terms (the SPS closure always uses f64).
+    #[serde(default)]
+    pub force_precision: ForcePrecision,
     /// Particle shifting; none by default.
     #[serde(default)]
     pub shifting: Option<Shifting>,
@@ -377,6 +395,12 @@ impl Scene {
                 check_non_negative("viscosity.nu", nu)?;
                 check_non_negative("viscosity.cs", cs)?;
                 check_non_negative("viscosity.ci", ci)?;
+                if self.force_precision == ForcePrecision::F32 {
+                    return Err(Error::invalid(
+                        "force_precision",
+                        "f32 pair terms exist in the batched force loop only; the SPS closure runs the f64 loop, so use f64",
+                    ));
+                }
             }
         }
         match self.diffusion {

@@ -90,7 +90,7 @@ fn run_tank(threads: usize, extra: &str) -> (Vec<f64>, Vec<u32>) {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    for extra in ["", r#", "shifting": {}"#, r#", "boundary": {"model": "adami"}"#] {
+    for extra in ["", r#", "shifting": {}"#, r#", "boundary": {"model": "adami"}"#, r#", "force_precision": "f32""#] {
         let (p1, i1) = run_tank(1, extra);
         let (p2, i2) = run_tank(2, extra);
         let (p3, i3) = run_tank(3, extra);

@@ -180,6 +180,7 @@ impl Simulation {
         d.set_item("integrator", p.integrator)?;
         d.set_item("boundary", p.boundary)?;
         d.set_item("shifting", p.shifting)?;
+        d.set_item("force_precision", p.force_precision)?;
         d.set_item("dt_floor", p.dt_floor)?;
         Ok(d)
     }

@@ -23,50 +23,60 @@ use super::eos::{pressure, sound_speed};
 use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
-use crate::math::{Dim, Real, Vector};
+use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, StencilRows, GROUPS, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::particles::KIND_EXCLUDED;
 
-/// Pairs per batch: large enough to amortise the loop set-up, small enough for L1.
+/// Pairs per batch: large enough to amortise the loop set-up, small enough for L1. A multiple
+/// of every [`PairFloat::LANES`].
 const BATCH: usize = 64;
-/// Partial sums per particle (the SIMD width in f64 of AVX2).
-const LANES: usize = 4;
+/// The most partial sums per particle (f32 in an AVX2 register).
+const MAX_LANES: usize = 8;
 /// Room for the candidate scan's four-wide stores, which may write up to three entries past
 /// the batch's last pair.
-const SCAN_ROOM: usize = BATCH + LANES;
+const SCAN_ROOM: usize = BATCH + 4;
 
 /// Per-chunk working arrays: the neighbours collected for one particle and one group, not yet
-/// summed, their gathered fields and their pair terms. Created once per chunk of particles
-/// (on the stack); only the first `n` (padded) entries are ever read.
-struct Scratch {
+/// summed, their gathered fields and their pair terms in the pair float type `F`. Created once
+/// per chunk of particles (on the stack); only the first `n` (padded) entries are ever read.
+struct Scratch<F: PairFloat> {
     n: usize,
     idx: [u32; SCAN_ROOM],
-    /// `r_ab` by component (x, y, z; z unused in 2D).
+    /// `r_ab` by component (x, y, z; z unused in 2D), in f64 as the scan forms it.
     r: [[Real; SCAN_ROOM]; 3],
     r2: [Real; SCAN_ROOM],
-    vb: [[Real; BATCH]; 3],
-    rhob: [Real; BATCH],
+    /// `r_ab` and `r_ab^2` rounded to f32 (single precision only): the arithmetic loop then
+    /// reads one type and runs eight pairs to a register.
+    rf: [[F; BATCH]; 3],
+    r2f: [F; BATCH],
+    vb: [[F; BATCH]; 3],
+    rhob: [F; BATCH],
+    /// `rho_b / rho0 - 1`, formed in f64 (single precision only).
+    relb: [F; BATCH],
     /// Pressure of each neighbour.
-    pb: [Real; BATCH],
-    cb: [Real; BATCH],
-    out_acc: [[Real; BATCH]; 3],
-    out_drho: [Real; BATCH],
-    out_diff: [Real; BATCH],
-    out_visc: [Real; BATCH],
+    pb: [F; BATCH],
+    cb: [F; BATCH],
+    out_acc: [[F; BATCH]; 3],
+    out_drho: [F; BATCH],
+    out_diff: [F; BATCH],
+    out_visc: [F; BATCH],
     rows: StencilRows,
 }
 
-impl Scratch {
+impl<F: PairFloat> Scratch<F> {
     fn new() -> Self {
-        let z = [0.0; BATCH];
+        let z = [F::default(); BATCH];
         let room = [0.0; SCAN_ROOM];
         Self {
             n: 0,
             idx: [0; SCAN_ROOM],
             r: [room; 3],
             r2: room,
+            rf: [z; 3],
+            r2f: z,
             vb: [z; 3],
             rhob: z,
+            relb: z,
             pb: z,
             cb: z,
             out_acc: [z; 3],
@@ -78,46 +88,50 @@ impl Scratch {
     }
 }
 
-/// The fields of particle `a` that every pair uses.
+/// The fields of particle `a` that every pair uses, in the pair float type.
 #[derive(Clone, Copy)]
-struct Own {
+struct Own<F: PairFloat> {
     slot: usize,
-    vel: [Real; 3],
-    rho: Real,
+    vel: [F; 3],
+    rho: F,
+    /// `rho_a / rho0 - 1`, formed in f64.
+    rel: F,
     /// Pressure.
-    p: Real,
-    p_rho2: Real,
-    sound_speed: Real,
+    p: F,
+    p_rho2: F,
+    sound_speed: F,
 }
 
-/// Partial sums of particle `a`, one per lane.
+/// Partial sums of particle `a`, one per lane (the first `F::LANES` are used).
 #[derive(Default)]
-struct Sums {
-    acc: [[Real; LANES]; 3],
-    drho: [Real; LANES],
-    diff: [Real; LANES],
+struct Sums<F: PairFloat> {
+    acc: [[F; MAX_LANES]; 3],
+    drho: [F; MAX_LANES],
+    diff: [F; MAX_LANES],
     /// Largest `|h v_ab.r_ab / (r_ab^2 + eta^2)|`.
-    visc: [Real; LANES],
+    visc: [F; MAX_LANES],
 }
 
 /// Sums the pair terms of the collected pairs into `sums` and empties the batch. `G`: the group
 /// of the neighbours (density diffusion acts between fluid particles only).
 #[inline(always)]
-fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
+fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
     c: &Constants,
     kernel: &K,
     f: &Fields<'_, D>,
-    own: &Own,
-    s: &mut Scratch,
-    sums: &mut Sums,
+    own: &Own<F>,
+    s: &mut Scratch<F>,
+    sums: &mut Sums<F>,
 ) {
     let fluid = G == GROUP_FLUID;
     let n = s.n;
     if n == 0 {
         return;
     }
-    let support2 = c.support * c.support;
-    let n_pad = n.div_ceil(LANES) * LANES;
+    let n_pad = n.div_ceil(F::LANES) * F::LANES;
+    // Lets the compiler drop the loops' bounds checks; with them it keeps a scalar epilogue of
+    // a whole register of pairs, run on every batch.
+    assert!(n_pad <= BATCH);
     // Padding: the particle itself at r = 0, masked in the arithmetic loop.
     for k in n..n_pad {
         s.idx[k] = own.slot as u32;
@@ -136,66 +150,99 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         // the particle itself), and the field arrays are as long as it (`Fields`).
         let (v, rhob) = unsafe { (*f.vel.get_unchecked(b), *f.rho.get_unchecked(b)) };
         for d in 0..D::DIM {
-            s.vb[d][k] = v.get(d);
+            s.vb[d][k] = F::of(v.get(d));
         }
-        s.rhob[k] = rhob;
+        s.rhob[k] = F::of(rhob);
+        if F::SINGLE {
+            s.relb[k] = F::of(rhob * c.inv_rho0 - 1.0);
+        }
         if !T7 {
-            s.pb[k] = pressure(c, s.rhob[k]);
+            s.pb[k] = F::of(pressure(c, rhob));
             if VISC == VISC_ARTIFICIAL {
-                s.cb[k] = sound_speed(c, s.rhob[k]);
+                s.cb[k] = F::of(sound_speed(c, rhob));
             }
         }
     }
+    if F::SINGLE {
+        for d in 0..D::DIM {
+            for k in 0..n_pad {
+                s.rf[d][k] = F::of(s.r[d][k]);
+            }
+        }
+        for k in 0..n_pad {
+            s.r2f[k] = F::of(s.r2[k]);
+        }
+    }
 
-    // Element-wise pair terms (the comments of fluid_forces_scalar explain each formula).
+    // Element-wise pair terms (the comments of fluid_forces_scalar explain each formula), with
+    // the constants in F formed once per batch.
+    let (zero, one) = (F::of(0.0), F::of(1.0));
+    let support2 = F::of(c.support * c.support);
+    let (inv_rho0, b_tait, c0, eta2, h) = (F::of(c.inv_rho0), F::of(c.b_tait), F::of(c.c0), F::of(c.eta2), F::of(c.h));
+    let (alpha, lam_coef, rho0) = (F::of(c.alpha), F::of(4.0 * c.nu), F::of(c.rho0));
+    let (seven, twenty_one, thirty_five) = (F::of(7.0), F::of(21.0), F::of(35.0));
     let three = D::DIM == 3;
     for k in 0..n_pad {
-        let (rx, ry) = (s.r[0][k], s.r[1][k]);
-        let rz = if three { s.r[2][k] } else { 0.0 };
+        let (rx, ry, rz, r2) = if F::SINGLE {
+            (s.rf[0][k], s.rf[1][k], if three { s.rf[2][k] } else { zero }, s.r2f[k])
+        } else {
+            (F::of(s.r[0][k]), F::of(s.r[1][k]), if three { F::of(s.r[2][k]) } else { zero }, F::of(s.r2[k]))
+        };
         // Pairs at r = 0 (the particle itself, padding, or a coincident particle) carry no
         // force: masked, and moved to the support radius so that no term divides by zero.
-        let at_zero = s.r2[k] == 0.0;
-        let mask = if at_zero { 0.0 } else { 1.0 };
-        let r2 = if at_zero { support2 } else { s.r2[k] };
+        let at_zero = r2 == zero;
+        let mask = if at_zero { zero } else { one };
+        let r2 = if at_zero { support2 } else { r2 };
         let rhob = s.rhob[k];
-        // Tait with gamma = 7 (eos.rs), x = rho_b / rho0 taken as rho_b * (1 / rho0)
+        // Tait with gamma = 7 (eos.rs)
         let (pb, cb) = if T7 {
-            let x = rhob * c.inv_rho0;
-            let x3 = x * x * x;
-            (c.b_tait * (x3 * x3 * x - 1.0), c.c0 * x3)
+            if F::SINGLE {
+                // (1 + e)^7 - 1 by Horner in e = rho_b/rho0 - 1 (binomial coefficients): no
+                // cancellation near rho0, so the pressure keeps f32's relative precision
+                let e = s.relb[k];
+                let x = one + e;
+                let x3 = x * x * x;
+                let poly = e * (seven + e * (twenty_one + e * (thirty_five + e * (thirty_five + e * (twenty_one + e * (seven + e))))));
+                (b_tait * poly, c0 * x3)
+            } else {
+                // x = rho_b / rho0 taken as rho_b * (1 / rho0)
+                let x = rhob * inv_rho0;
+                let x3 = x * x * x;
+                (b_tait * (x3 * x3 * x - one), c0 * x3)
+            }
         } else {
             (s.pb[k], s.cb[k])
         };
         let dist = r2.sqrt();
-        let r2e = r2 + c.eta2;
+        let r2e = r2 + eta2;
         let sum_rho = own.rho + rhob;
-        let rr = if K::NEEDS_INV_R { dist } else { 1.0 };
-        let inv_all = 1.0 / (rr * r2e * rhob * sum_rho);
+        let rr = if K::NEEDS_INV_R { dist } else { one };
+        let inv_all = one / (rr * r2e * rhob * sum_rho);
         let inv_r2_eta2 = rr * rhob * sum_rho * inv_all;
         let inv_sum_rho = rr * r2e * rhob * inv_all;
         let fk = if K::NEEDS_INV_R {
-            kernel.grad_factor_inv_r(dist, r2e * rhob * sum_rho * inv_all)
+            kernel.grad_factor_inv_r_in(dist, r2e * rhob * sum_rho * inv_all)
         } else {
-            kernel.grad_factor(dist)
+            kernel.grad_factor_in(dist)
         } * mask;
         let (gx, gy, gz) = (rx * fk, ry * fk, rz * fk);
         let (vx, vy) = (own.vel[0] - s.vb[0][k], own.vel[1] - s.vb[1][k]);
-        let vz = if three { own.vel[2] - s.vb[2][k] } else { 0.0 };
+        let vz = if three { own.vel[2] - s.vb[2][k] } else { zero };
         s.out_drho[k] = vx * gx + vy * gy + vz * gz;
         let vr = vx * rx + vy * ry + vz * rz;
-        s.out_visc[k] = (c.h * vr * inv_r2_eta2).abs();
+        s.out_visc[k] = (h * vr * inv_r2_eta2).abs();
         let inv_rhob = rr * r2e * sum_rho * inv_all;
         let mut p_term = own.p_rho2 + pb * inv_rhob * inv_rhob;
         if VISC == VISC_ARTIFICIAL {
             let cbar_rhobar = (own.sound_speed + cb) * inv_sum_rho;
             // `vr < 0 ? vr : 0` is `vr.min(0.0)` for every input (NaN gives 0 both ways),
             // without the NaN blend
-            let approaching = if vr < 0.0 { vr } else { 0.0 };
-            p_term += -c.alpha * cbar_rhobar * (c.h * approaching * inv_r2_eta2);
+            let approaching = if vr < zero { vr } else { zero };
+            p_term += -alpha * cbar_rhobar * (h * approaching * inv_r2_eta2);
         }
         let (mut ax, mut ay, mut az) = (-gx * p_term, -gy * p_term, -gz * p_term);
         if VISC != VISC_ARTIFICIAL {
-            let lam = 4.0 * c.nu * (rx * gx + ry * gy + rz * gz) * inv_r2_eta2 * inv_sum_rho;
+            let lam = lam_coef * (rx * gx + ry * gy + rz * gz) * inv_r2_eta2 * inv_sum_rho;
             ax += vx * lam;
             ay += vy * lam;
             az += vz * lam;
@@ -206,10 +253,13 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
         if DIFF != DIFF_NONE && fluid {
             let drho_ba = if DIFF == DIFF_FOURTAKAS {
                 hydrostatic_free_difference(c, pb - own.p, if three { rz } else { ry })
+            } else if F::SINGLE {
+                // rho0 (e_b - e_a): two densities near rho0 would cancel in f32
+                rho0 * (s.relb[k] - own.rel)
             } else {
                 rhob - own.rho
             };
-            s.out_diff[k] = 2.0 * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
+            s.out_diff[k] = F::of(2.0) * drho_ba * (-r2 * fk) * inv_r2_eta2 * inv_rhob;
         }
     }
 
@@ -227,11 +277,11 @@ fn sum_batch<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, 
 
 /// `max(lanes[k % LANES], terms[k])` into lane `k % LANES`. Written as a comparison, not
 /// `f64::max`: the same result for every input (the lanes start at 0 and a NaN term never
-/// wins), but one `vmaxpd` instead of a max and a NaN blend per four terms.
+/// wins), but one `vmaxpd` instead of a max and a NaN blend per register of terms.
 #[inline(always)]
-fn lane_max(lanes: &mut [Real; LANES], terms: &[Real]) {
-    for chunk in terms.chunks_exact(LANES) {
-        for l in 0..LANES {
+fn lane_max<F: PairFloat>(lanes: &mut [F; MAX_LANES], terms: &[F]) {
+    for chunk in terms.chunks_exact(F::LANES) {
+        for l in 0..F::LANES {
             if chunk[l] > lanes[l] {
                 lanes[l] = chunk[l];
             }
@@ -241,31 +291,38 @@ fn lane_max(lanes: &mut [Real; LANES], terms: &[Real]) {
 
 /// Adds `terms[k]` to lane `k % LANES` (`terms.len()` is a multiple of `LANES`).
 #[inline(always)]
-fn lane_add(lanes: &mut [Real; LANES], terms: &[Real]) {
-    for chunk in terms.chunks_exact(LANES) {
-        for l in 0..LANES {
+fn lane_add<F: PairFloat>(lanes: &mut [F; MAX_LANES], terms: &[F]) {
+    for chunk in terms.chunks_exact(F::LANES) {
+        for l in 0..F::LANES {
             lanes[l] += chunk[l];
         }
     }
 }
 
-/// `((s0 + s1) + (s2 + s3))`: the fixed order in which lanes are added.
+/// The lanes added in a fixed tree order, in f64: `(s0 + s1) + (s2 + s3)` for four lanes, and
+/// the two halves of eight added likewise.
 #[inline(always)]
-fn lane_sum(s: &[Real; LANES]) -> Real {
-    (s[0] + s[1]) + (s[2] + s[3])
+fn lane_sum<F: PairFloat>(s: &[F; MAX_LANES]) -> Real {
+    let v = |i: usize| s[i].to_real();
+    let quad = |i: usize| (v(i) + v(i + 1)) + (v(i + 2) + v(i + 3));
+    if F::LANES == 4 {
+        quad(0)
+    } else {
+        quad(0) + quad(4)
+    }
 }
 
 /// Collects the neighbours of `own` in group `G` and sums their terms. Plain loops, no
 /// closures: a closure would be compiled without the caller's target features.
 #[inline(always)]
-fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize, const AVX2: bool>(
+fn gather_group<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
     f: &Fields<'_, D>,
-    own: &Own,
-    s: &mut Scratch,
-    sums: &mut Sums,
+    own: &Own<F>,
+    s: &mut Scratch<F>,
+    sums: &mut Sums<F>,
 ) {
     if !grid.has_group(G) {
         return;
@@ -283,7 +340,7 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
         // branch, which the particle lattice makes predictable.
         while j < end {
             if s.n == BATCH {
-                sum_batch::<D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
+                sum_batch::<F, D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
             }
             let m = (end - j).min(BATCH - s.n);
             let mut k = s.n;
@@ -316,33 +373,42 @@ fn gather_group<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
             j += m;
         }
     }
-    sum_batch::<D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
+    sum_batch::<F, D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
 }
 
 /// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
 #[inline(always)]
-fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
+fn particle_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
     f: &Fields<'_, D>,
     a: usize,
-    s: &mut Scratch,
+    s: &mut Scratch<F>,
 ) -> (D::V, Real, StepLimits) {
     let va = f.vel[a];
-    let mut vel = [0.0; 3];
+    let mut vel = [F::of(0.0); 3];
     for (d, v) in vel.iter_mut().enumerate().take(D::DIM) {
-        *v = va.get(d);
+        *v = F::of(va.get(d));
     }
     let rho = f.rho[a];
     let p = pressure(c, rho);
-    let own = Own { slot: a, vel, rho, p, p_rho2: p / (rho * rho), sound_speed: sound_speed(c, rho) };
-    let mut sums = Sums::default();
+    let cs = sound_speed(c, rho);
+    let own = Own {
+        slot: a,
+        vel,
+        rho: F::of(rho),
+        rel: F::of(rho * c.inv_rho0 - 1.0),
+        p: F::of(p),
+        p_rho2: F::of(p / (rho * rho)),
+        sound_speed: F::of(cs),
+    };
+    let mut sums = Sums::<F>::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_FIXED, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_MOVING, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<D, K, VISC, DIFF, T7, GROUP_FLUID, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_FIXED, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_MOVING, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_FLUID, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
 
     let mut acc = D::V::ZERO;
     for d in 0..D::DIM {
@@ -351,15 +417,14 @@ fn particle_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: 
     let vertical = D::DIM - 1;
     acc.set(vertical, acc.get(vertical) - c.gravity);
     let drho = c.mass * (lane_sum(&sums.drho) + c.delta_h_c0 * lane_sum(&sums.diff));
-    let max_visc = sums.visc.iter().fold(0.0 as Real, |m, &v| m.max(v));
-    let limits =
-        StepLimits { max_acc: acc.length(), min_dt_cv: c.h / (own.sound_speed + max_visc), acc_slot: a, cv_slot: a };
+    let max_visc = sums.visc[..F::LANES].iter().fold(0.0 as Real, |m, &v| m.max(v.to_real()));
+    let limits = StepLimits { max_acc: acc.length(), min_dt_cv: c.h / (cs + max_visc), acc_slot: a, cv_slot: a };
     (acc, drho, limits)
 }
 
 /// Forces on the fluid particles `first..first + acc.len()` (indices into the fluid range).
 #[inline(always)]
-fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
+fn chunk_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -368,7 +433,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
-    let mut s = Scratch::new();
+    let mut s = Scratch::<F>::new();
     let mut limits = StepLimits::NONE;
     for (i, (acc_a, drho_a)) in acc.iter_mut().zip(drho.iter_mut()).enumerate() {
         let a = f.fluid_start + first + i;
@@ -377,7 +442,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
             *drho_a = 0.0;
             continue;
         }
-        let (acc_v, drho_v, lim) = particle_forces::<D, K, VISC, DIFF, T7, AVX2>(c, kernel, grid, f, a, &mut s);
+        let (acc_v, drho_v, lim) = particle_forces::<F, D, K, VISC, DIFF, T7, AVX2>(c, kernel, grid, f, a, &mut s);
         *acc_a = acc_v;
         *drho_a = drho_v;
         limits = limits.merge(lim);
@@ -392,7 +457,7 @@ fn chunk_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: boo
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+unsafe fn chunk_forces_avx2<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -401,7 +466,7 @@ unsafe fn chunk_forces_avx2<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, c
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
-    chunk_forces::<D, K, VISC, DIFF, T7, true>(c, kernel, grid, f, first, acc, drho)
+    chunk_forces::<F, D, K, VISC, DIFF, T7, true>(c, kernel, grid, f, first, acc, drho)
 }
 
 /// Whether the batched loop runs its AVX2 variant on this CPU.
@@ -446,15 +511,17 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
 ) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
     assert!(!avx2 || uses_avx2(), "the AVX2 variant needs a CPU with AVX2");
-    if c.gamma == 7.0 {
-        forces_for_gamma::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2)
-    } else {
-        forces_for_gamma::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2)
+    match (c.pair_f32, c.gamma == 7.0) {
+        (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
+        (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),
+        (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
+        (true, false) => forces_for_gamma::<f32, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),
     }
 }
 
-/// [`fluid_forces_variant`] with `T7` = "gamma is 7" fixed at compile time.
-fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+/// [`fluid_forces_variant`] with the pair float type `F` and `T7` = "gamma is 7" fixed at
+/// compile time.
+fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -471,10 +538,10 @@ fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7:
             #[cfg(target_arch = "x86_64")]
             if avx2 {
                 // SAFETY: `avx2` is true only where AVX2 was detected (asserted above).
-                return unsafe { chunk_forces_avx2::<D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c) };
+                return unsafe { chunk_forces_avx2::<F, D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c) };
             }
             let _ = avx2;
-            chunk_forces::<D, K, VISC, DIFF, T7, false>(c, kernel, grid, &f, first, acc_c, drho_c)
+            chunk_forces::<F, D, K, VISC, DIFF, T7, false>(c, kernel, grid, &f, first, acc_c, drho_c)
         })
         .reduce(|| StepLimits::NONE, StepLimits::merge)
 }
@@ -484,7 +551,7 @@ fn forces_for_gamma<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7:
 mod x86 {
     use std::arch::x86_64::*;
 
-    use super::{Real, Scratch};
+    use super::{PairFloat, Real, Scratch};
 
     /// Compress tables for one lane order: for each 4-bit mask of lanes inside the support, the
     /// 32-bit source indices that move the passing lanes' f64 values to the front in candidate
@@ -552,14 +619,14 @@ mod x86 {
     #[target_feature(enable = "avx2")]
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(super) unsafe fn scan_quads(
+    pub(super) unsafe fn scan_quads<F: PairFloat>(
         dim: usize,
         pa: [Real; 3],
         pos: &[Real],
         first: usize,
         m: usize,
         support2: Real,
-        s: &mut Scratch,
+        s: &mut Scratch<F>,
         mut k: usize,
     ) -> (usize, usize) {
         let t = if dim == 2 { &TABLES_2D } else { &TABLES_3D };

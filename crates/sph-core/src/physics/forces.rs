@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::eos::{density_at_pressure, pressure, sound_speed};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
-use crate::math::{Dim, Real, Vector};
+use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
 use crate::particles::KIND_EXCLUDED;
 
@@ -223,8 +223,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// field is exactly linear (`p = rho0 g depth` is how the water starts), so the difference is
 /// zero for every hydrostatic pair and odd in `ab`; its first-order term is Eq. 13's.
 #[inline(always)]
-pub(crate) fn hydrostatic_free_difference(c: &Constants, p_ba: Real, z_ab: Real) -> Real {
-    (p_ba - c.rho0_g * z_ab) * c.inv_c0_2
+pub(crate) fn hydrostatic_free_difference<F: PairFloat>(c: &Constants, p_ba: F, z_ab: F) -> F {
+    (p_ba - F::of(c.rho0_g) * z_ab) * F::of(c.inv_c0_2)
 }
 
 /// Continuity for wall particles (dynamic boundary condition, Crespo et al. 2007): walls gather

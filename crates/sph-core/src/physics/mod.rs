@@ -7,7 +7,7 @@ pub mod eos;
 pub mod forces;
 
 use crate::math::Real;
-use crate::scene::{Diffusion, Scene, Viscosity};
+use crate::scene::{Diffusion, ForcePrecision, Scene, Viscosity};
 
 /// Viscosity model as a const generic of the force loop.
 pub const VISC_ARTIFICIAL: u8 = 0;
@@ -69,6 +69,8 @@ pub struct Constants {
     pub inv_rho0: Real,
     pub cfl: Real,
     pub density_band: Real,
+    /// The batched force loop forms its pair terms in f32 (`ForcePrecision::F32`).
+    pub pair_f32: bool,
 }
 
 impl Constants {
@@ -111,6 +113,7 @@ impl Constants {
             inv_rho0: 1.0 / scene.rho0,
             cfl: scene.cfl,
             density_band: scene.density_band,
+            pair_f32: scene.force_precision == ForcePrecision::F32,
         }
     }
 }
