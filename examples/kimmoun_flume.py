@@ -334,7 +334,7 @@ def figures(scene: ws.FlumeScene, records: Records, analysis: dict[str, Any],
 
 def main(argv: Sequence[str] | None = None) -> list[Path]:
     """Run the example (see the module docstring); returns the figures written."""
-    args = parse_args(argv, __doc__.splitlines()[0], dp=0.05, periods=20.0, out="runs/kimmoun",
+    args = parse_args(argv, __doc__.splitlines()[0], dp=0.0168, periods=20.0, out="runs/kimmoun",
                       depth=DEPTH)
     return run_flume(args, make, figures)
 

@@ -45,6 +45,9 @@ def test_bench_reports_the_comparison_with_dualsphysics() -> None:
     assert result["dsph_us_per_particle_step"] == {"1": 1.16, "2": 0.7}
     assert result["speedup_vs_dsph"] == pytest.approx(1.16 / result["us_per_particle_step"])
     assert isinstance(result["meets_target"], bool) and result["peak_rss_bytes"] > 0
+    assert 0 < result["baseline_rss_bytes"] < result["peak_rss_bytes"]
+    assert result["peak_rss_above_baseline_per_particle"] == pytest.approx(
+        (result["peak_rss_bytes"] - result["baseline_rss_bytes"]) / result["n_particles"])
 
 
 def test_bench_refuses_overrides_of_a_reference_case() -> None:

@@ -122,8 +122,11 @@ def test_every_builtin_case_builds(case: str) -> None:
     params = sim.params()
     steps = setup.until / (setup.cfl * params["h"] / params["c0"])
     # coarse defaults: at most about 4e8 particle-steps (a few minutes on two cores; flume3d,
-    # nine particles across its width, is the largest: about 3.8e8)
-    assert steps * sim.n_particles < 4e8, (case, steps, sim.n_particles)
+    # nine particles across its width, is the largest: about 3.8e8). kimmoun2d is the exception:
+    # its plunging lip needs H/dp of about 7 (docs/wave-flume.md, "The lip against
+    # resolution"), about 3.2e9 particle-steps, some 15 minutes on two cores
+    limit = 4e9 if case == "kimmoun2d" else 4e8
+    assert steps * sim.n_particles < limit, (case, steps, sim.n_particles)
     if case in ("kimmoun2d", "stansby2d", "solitary2d"):
         assert any(g["type"] == "runup" for g in specs)
     if case == "stansby2d":

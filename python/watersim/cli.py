@@ -589,6 +589,18 @@ def _peak_rss_bytes() -> int | None:
         return None
 
 
+def _current_rss_bytes() -> int | None:
+    """Resident memory of this process now [bytes] (``VmRSS`` of /proc/self/status)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as status:
+            for line in status:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:  # pragma: no cover - not on Linux
+        pass
+    return None  # pragma: no cover
+
+
 def cmd_bench(args: argparse.Namespace) -> int:
     """``watersim bench``: time K steps of a dam break scaled to about N particles."""
     if args.case not in BENCH_CASES:
@@ -597,6 +609,8 @@ def cmd_bench(args: argparse.Namespace) -> int:
         raise CliError(f"--particles: must be at least 10, got {args.particles}")
     if args.steps < 1 or args.warmup < 0:
         raise CliError("--steps: must be at least 1 (and --warmup not negative)")
+    # what the process holds before the simulation exists (interpreter, NumPy, the module)
+    baseline_rss = _current_rss_bytes()
     sim = _bench_simulation(args)
     params = sim.params()
     threads = rayon_threads()
@@ -612,6 +626,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     except InstabilityError as exc:
         status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
     n = sim.n_particles
+    peak_rss = _peak_rss_bytes()
     result: dict[str, Any] = {
         "case": args.case,
         "status": status,
@@ -635,7 +650,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
         "integrator": sim.scene["integrator"]["scheme"],
         "force_precision": sim.scene.get("force_precision", "f64"),
         "sim_time": sim.time,
-        "peak_rss_bytes": _peak_rss_bytes(),
+        "peak_rss_bytes": peak_rss,
+        "baseline_rss_bytes": baseline_rss,
+        # the simulation's share of the peak, to set against bytes_per_particle
+        "peak_rss_above_baseline_per_particle": (
+            (peak_rss - baseline_rss) / n if peak_rss is not None and baseline_rss is not None
+            else None),
         "version": __version__,
     }
     if args.case in DSPH_CASES:

@@ -230,16 +230,19 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     splash-up, roller); a line every 0.5 m from 8 to 14.5 m for the envelopes and the breaking
     position; a Mansard-Funke triplet from 1.5 m; and the run-up gauge on the slope. The
     elevation gauges use seed 001's method (the highest particle). The six gauges 18 cm apart
-    of the experiment are not placed: the seed does not give where they were. dp = 0.705 / 14 =
-    0.050357 m (14 layers; nominal 0.05 m, H/dp = 2.3, about 5,700 particles, 2,500 fluid),
-    until = 20 periods (25.5 s).
+    of the experiment are not placed: the seed does not give where they were. dp = 0.705 / 42 =
+    0.016786 m (42 layers, H/dp = 6.8, 33,037 particles, 23,247 fluid), until = 20 periods
+    (25.5 s): the coarsest spacing at which the wave plunges with a clear lip (docs/wave-flume.md,
+    "The lip against resolution": none at H/dp 4.5, marginal at 5.7; at 6.8 it breaks at 12.1 m
+    with H 0.134 m against the seed's 12.1 m and 0.14 m, and the overturn search reports
+    "plunging"). It costs about 25 minutes of CPU; ``--set dp=0.050357`` (0.705 / 14) runs
+    twenty times faster and breaks without a lip.
 
     Numerics: water's laminar viscosity (nu = 1e-6 m^2/s) and Verlet, as flume3d. The flume
     default, alpha = 0.01, acts on the fluid-bed pairs too: at dp = 0.05 m its equivalent
     viscosity (alpha h c0 / 8, about 3e-3 m^2/s) is a bottom boundary layer that takes the wave's
-    energy over the 10 m of the slope instead of letting it shoal. Measured (docs/wave-flume.md,
-    "kimmoun2d: shoaling and breaking"): H at the toe -9 % instead of -16 %, at 12 m 0.066 m
-    instead of 0.038 m, in 85 s of CPU instead of 126-279 s.
+    energy over the 10 m of the slope instead of letting it shoal (docs/wave-flume.md,
+    "kimmoun2d: shoaling and breaking").
     """
     wave = s.apply("wave", RegularWave(height=0.114, period=1.275))
     paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
@@ -257,7 +260,7 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     # over the upper slope, a few particles deep at coarse dp, which the kernel method reads
     # as dry)
     gauges = [dataclasses.replace(g, method="particle") for g in _unique_positions(gauges)]
-    num = s.numerics(dp=lattice_dp(depth, 0.05), coefsound=10.0, until=round(20 * wave.period, 3),
+    num = s.numerics(dp=lattice_dp(depth, 0.0168), coefsound=10.0, until=round(20 * wave.period, 3),
                      viscosity="laminar", nu=1e-6, integrator="verlet")
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 

@@ -165,7 +165,8 @@ struct ShiftState<D: Dim> {
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     perm: Vec<u32>,
-    /// Gather buffer of `permute`, shared by all arrays (see there).
+    /// Gather buffer of `permute`, shared by all arrays (see there). Empty when the fluid
+    /// accelerations are large enough to serve instead (`Solver::sort_group`).
     gather: Vec<u64>,
 }
 
@@ -210,10 +211,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         scene.validate()?;
         let c = Constants::new(&scene);
         let kernel = K::new(c.h, D::DIM);
-        let sampled = geometry::sample::<D>(&scene)?;
-        let n_fixed = sampled.walls.len();
-        let n_moving = sampled.moving.len();
-        let n = n_fixed + n_moving + sampled.fluid.len();
+        let geometry::Sampled { walls, wall_surface, fluid, fluid_surface, moving, moving_surface } =
+            geometry::sample::<D>(&scene)?;
+        let n_fixed = walls.len();
+        let n_moving = moving.len();
+        let n = n_fixed + n_moving + fluid.len();
         let up = D::DIM - 1;
 
         let hydrostatic = |surface: Real, z: Real| -> Real {
@@ -221,15 +223,17 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         };
         let mut pos = Vec::with_capacity(n);
         let mut rho = Vec::with_capacity(n);
-        let walls = sampled.walls.iter().zip(&sampled.wall_surface);
-        for (p, s) in walls.chain(sampled.moving.iter().zip(&sampled.moving_surface)) {
+        for (p, s) in walls.iter().zip(&wall_surface).chain(moving.iter().zip(&moving_surface)) {
             pos.push(*p);
             rho.push(s.map_or(c.rho0, |s| hydrostatic(s, p.get(up))));
         }
-        for (p, &s) in sampled.fluid.iter().zip(&sampled.fluid_surface) {
+        for (p, &s) in fluid.iter().zip(&fluid_surface) {
             pos.push(*p);
             rho.push(hydrostatic(s, p.get(up)));
         }
+        // The sampled lattice (about 40 bytes a particle) is dead once copied: freed before the
+        // other arrays are allocated, building peaks below running (docs/benchmarks.md).
+        drop((walls, wall_surface, fluid, fluid_surface, moving_surface));
         let mut kind = vec![KIND_FIXED; n_fixed];
         kind.resize(n_fixed + n_moving, KIND_MOVING);
         kind.resize(n, KIND_FLUID);
@@ -273,7 +277,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         });
         // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
         let dt_floor = 1e-6 * c.h / c.c0;
-        let scratch = Scratch { perm: vec![0; n], gather: vec![0u64; n] };
+        // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
+        let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
+        let scratch = Scratch { perm: vec![0; n], gather };
         let mut solver = Self {
             scene,
             c,
@@ -288,7 +294,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             steps: 0,
             dt: 0.0,
             dt_floor,
-            moving_ref: sampled.moving,
+            moving_ref: moving,
             paddle_levels: (0.0, 0.0),
             paddle_time: 0.0,
             moving_acc: Vec::new(),
@@ -674,25 +680,30 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         if range.is_empty() {
             return;
         }
-        let s = &mut self.scratch;
-        let perm = &mut s.perm[..range.len()];
+        let Scratch { perm, gather } = &mut self.scratch;
+        let Particles { pos, vel, rho, id, kind, acc, .. } = &mut self.p;
+        // The gather buffer: the fluid accelerations where they are large enough (8 bytes a
+        // particle less to hold). They are dead here: every sort comes right before a force
+        // evaluation, which overwrites all of them, and nothing reads them in between.
+        let gather: &mut [u64] = if gather.is_empty() { bytemuck::cast_slice_mut(acc.as_mut_slice()) } else { gather };
+        let perm = &mut perm[..range.len()];
         // the cell keys live in the gather buffer: they are dead before `permute` reuses it
-        let keys = bytemuck::cast_slice_mut::<u64, u32>(&mut s.gather);
-        self.grid.sort_group(g, range.clone(), &self.p.pos, perm, keys);
-        let perm = &s.perm[..range.len()];
-        permute_vectors(&mut self.p.pos, range.clone(), perm, &mut s.gather);
-        permute_vectors(&mut self.p.vel, range.clone(), perm, &mut s.gather);
-        permute(&mut self.p.rho, range.clone(), perm, &mut s.gather);
-        permute(&mut self.p.id, range.clone(), perm, &mut s.gather);
-        permute(&mut self.p.kind, range.clone(), perm, &mut s.gather);
+        let keys = bytemuck::cast_slice_mut::<u64, u32>(gather);
+        self.grid.sort_group(g, range.clone(), pos, perm, keys);
+        let perm = &*perm;
+        permute_vectors(pos, range.clone(), perm, gather);
+        permute_vectors(vel, range.clone(), perm, gather);
+        permute(rho, range.clone(), perm, gather);
+        permute(id, range.clone(), perm, gather);
+        permute(kind, range.clone(), perm, gather);
         match &mut self.history {
             History::Symplectic { vel0, rho0 } => {
-                permute_vectors(vel0, range.clone(), perm, &mut s.gather);
-                permute(rho0, range.clone(), perm, &mut s.gather);
+                permute_vectors(vel0, range.clone(), perm, gather);
+                permute(rho0, range.clone(), perm, gather);
             }
             History::Verlet { vel_prev, rho_prev, .. } => {
-                permute_vectors(vel_prev, range.clone(), perm, &mut s.gather);
-                permute(rho_prev, range.clone(), perm, &mut s.gather);
+                permute_vectors(vel_prev, range.clone(), perm, gather);
+                permute(rho_prev, range.clone(), perm, gather);
             }
         }
     }
