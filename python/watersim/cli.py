@@ -545,14 +545,13 @@ def _dsph_force_precision(case: str, settings: list[str]) -> str:
     """The one override a DualSPHysics case takes: ``force_precision`` (DualSPHysics itself
     forms its forces in f32, WaterSim's default is f64)."""
     precision = "f64"
-    for item in settings:
-        key, _, value = item.partition("=")
-        if key.strip() != "force_precision":
+    for key, text in _split_settings(settings):
+        if key != "force_precision":
             raise CliError(
                 f"--set: {case} reproduces DualSPHysics' settings exactly and takes no "
-                f"override but force_precision, got {item!r} (use --particles N to scale it)"
+                f"override but force_precision, got {key!r} (use --particles N to scale it)"
             )
-        precision = value.strip()
+        precision = text.strip()
         if precision not in FORCE_PRECISIONS:
             raise CliError(
                 f"--set: force_precision must be one of {', '.join(FORCE_PRECISIONS)}, "
