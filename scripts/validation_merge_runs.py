@@ -1,5 +1,8 @@
-"""Replace the (case, resolution) runs of runs.json by the reruns in the given JSON files, in place."""
-import json, sys
+"""Replace the (case, resolution) runs of runs.json by the reruns in the given JSON files, in
+place."""
+import json
+import sys
+
 path = sys.argv[1]
 runs = json.load(open(path))
 new = {}
@@ -11,10 +14,14 @@ for i, r in enumerate(runs):
     key = (r["case"], float(r["resolution"]))
     if key in new:
         old = r
-        runs[i] = new[key]; seen.add(key)
-        print(f"{key}: dp {old['dp']:.6g} -> {new[key]['dp']:.6g}, particles {old['n_particles']} -> {new[key]['n_particles']}, "
-              f"wall {old['wall_s']:.1f} -> {new[key]['wall_s']:.1f}, cpu {old['cpu_s']:.1f} -> {new[key]['cpu_s']:.1f}, "
-              f"status {new[key]['status']}, errors {old['errors']} -> {new[key]['errors']}")
+        rerun = new[key]
+        runs[i] = rerun
+        seen.add(key)
+        print(f"{key}: dp {old['dp']:.6g} -> {rerun['dp']:.6g}, "
+              f"particles {old['n_particles']} -> {rerun['n_particles']}, "
+              f"wall {old['wall_s']:.1f} -> {rerun['wall_s']:.1f}, "
+              f"cpu {old['cpu_s']:.1f} -> {rerun['cpu_s']:.1f}, "
+              f"status {rerun['status']}, errors {old['errors']} -> {rerun['errors']}")
 missing = set(new) - seen
 assert not missing, missing
 with open(path, "w") as fh:

@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 
 import pytest
-from conftest import run_cli
 
+from conftest import run_cli
 from watersim import Simulation
 from watersim.bench_cases import DSPH_CASES, dsph_scene
 
@@ -22,7 +22,8 @@ def test_particle_count_matches_dualsphysics(case: str) -> None:
 
 def test_settings_are_dualsphysics_own() -> None:
     s3 = dsph_scene("dsph-dambreak3d")
-    assert (s3["kernel"], s3["coefh"], s3["cfl"], s3["coefsound"]) == ("cubic_spline", 1.0, 0.2, 20.0)
+    settings = (s3["kernel"], s3["coefh"], s3["cfl"], s3["coefsound"])
+    assert settings == ("cubic_spline", 1.0, 0.2, 20.0)
     assert s3["viscosity"] == {"model": "artificial", "alpha": 0.1}
     assert s3["diffusion"] == {"model": "fourtakas", "delta": 0.1}
     assert s3["integrator"] == {"scheme": "verlet", "euler_every": 40}

@@ -43,7 +43,9 @@ def test_checkpoint_of_another_scene_is_refused(tmp_path: Path) -> None:
 
 
 def test_injected_nan_raises_a_structured_error() -> None:
-    sim = watersim.DamBreak(dim=2, dp=0.1, width=0.6, height=0.9, tank_length=1.8, tank_height=1.2).build()
+    sim = watersim.DamBreak(
+        dim=2, dp=0.1, width=0.6, height=0.9, tank_length=1.8, tank_height=1.2
+    ).build()
     sim.step(2)
     state = sim.core.checkpoint()
     fluid = np.flatnonzero(state["kinds"] == 0)

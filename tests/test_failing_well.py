@@ -76,7 +76,10 @@ def test_density_out_of_band_reports_the_density() -> None:
         sim.step(5)
     _check_fields(info.value, "density_out_of_range", sim)
     assert info.value.step == 1
-    assert re.search(r"density [0-9.]+ kg/m\^3 outside \[999\.900, 1000\.100\] \(rho0 -\+ 0\.01 %\)", str(info.value))
+    assert re.search(
+        r"density [0-9.]+ kg/m\^3 outside \[999\.900, 1000\.100\] \(rho0 -\+ 0\.01 %\)",
+        str(info.value),
+    )
 
 
 def test_time_step_collapse_from_a_runaway_density() -> None:

@@ -17,7 +17,8 @@ from watersim.output import SnapshotWriter
 def test_snapshots_round_trip_through_meshio(tmp_path: Path, dim: int) -> None:
     extra = {"tank_width": 0.45} if dim == 3 else {}
     sim = watersim.DamBreak(
-        dim=dim, dp=0.1 if dim == 2 else 0.15, width=0.6, height=0.9, tank_length=1.8, tank_height=1.2, **extra
+        dim=dim, dp=0.1 if dim == 2 else 0.15, width=0.6, height=0.9, tank_length=1.8,
+        tank_height=1.2, **extra,
     ).build()
     writer = SnapshotWriter(tmp_path)
     writer.write(sim)
@@ -26,7 +27,8 @@ def test_snapshots_round_trip_through_meshio(tmp_path: Path, dim: int) -> None:
     mesh = meshio.read(path)
     n = sim.n_particles
     assert mesh.points.shape == (n, 3)
-    for field, shape in (("velocity", (n, 3)), ("density", (n,)), ("pressure", (n,)), ("kind", (n,)), ("id", (n,))):
+    shapes = {"velocity": (n, 3), "density": (n,), "pressure": (n,), "kind": (n,), "id": (n,)}
+    for field, shape in shapes.items():
         assert mesh.point_data[field].shape == shape, field
     order = np.argsort(np.asarray(sim.core.ids))
     assert np.array_equal(mesh.point_data["id"], np.asarray(sim.core.ids)[order])

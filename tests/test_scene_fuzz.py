@@ -35,7 +35,9 @@ def scenes(draw: st.DrawFn) -> dict:
     d = max(dim, 1)
     tank_max = [_mostly(draw, plausible, anything) for _ in range(d)]
     fluid_max = [
-        _mostly(draw, st.floats(0.1, 1.0).map(lambda f, t=t: f * t if math.isfinite(t) else f), anything)
+        _mostly(
+            draw, st.floats(0.1, 1.0).map(lambda f, t=t: f * t if math.isfinite(t) else f), anything
+        )
         for t in tank_max
     ]
     scene = {
@@ -47,7 +49,8 @@ def scenes(draw: st.DrawFn) -> dict:
         "memory_limit_bytes": 4_000_000,
     }
     ranges = {
-        "gravity": (0.0, 20.0), "rho0": (500.0, 2000.0), "coefh": (0.8, 2.0), "coefsound": (5.0, 80.0),
+        "gravity": (0.0, 20.0), "rho0": (500.0, 2000.0), "coefh": (0.8, 2.0),
+        "coefsound": (5.0, 80.0),
         "gamma": (1.0, 7.0), "cfl": (0.05, 1.0), "density_band": (0.05, 1.0),
     }
     for key, (lo, hi) in ranges.items():
@@ -56,9 +59,11 @@ def scenes(draw: st.DrawFn) -> dict:
             # counts the grid's cells in its memory check: test_tiny_coefh_is_refused_not_a_panic)
             scene[key] = _mostly(draw, st.floats(lo, hi), anything)
     if draw(st.booleans()):
-        scene["kernel"] = _mostly(draw, st.sampled_from(["wendland", "cubic_spline"]), st.sampled_from(["gauss", ""]))
+        kernels = st.sampled_from(["wendland", "cubic_spline"])
+        scene["kernel"] = _mostly(draw, kernels, st.sampled_from(["gauss", ""]))
     if draw(st.booleans()):
-        model = _mostly(draw, st.sampled_from(["artificial", "laminar", "laminar_sps"]), st.just("magic"))
+        models = st.sampled_from(["artificial", "laminar", "laminar_sps"])
+        model = _mostly(draw, models, st.just("magic"))
         value = _mostly(draw, st.floats(0.0, 0.5), anything)
         scene["viscosity"] = {"model": model, "alpha" if model == "artificial" else "nu": value}
     if draw(st.booleans()):
@@ -67,7 +72,8 @@ def scenes(draw: st.DrawFn) -> dict:
         if model in ("molteni", "fourtakas"):
             scene["diffusion"]["delta"] = _mostly(draw, st.floats(0.0, 0.5), anything)
     if draw(st.booleans()):
-        scene["integrator"] = {"scheme": _mostly(draw, st.sampled_from(["symplectic", "verlet"]), st.just("rk4"))}
+        schemes = st.sampled_from(["symplectic", "verlet"])
+        scene["integrator"] = {"scheme": _mostly(draw, schemes, st.just("rk4"))}
     if draw(st.integers(0, 9)) == 0:
         scene[draw(st.sampled_from(["bogus", "dpp", "Tank"]))] = 1
     return scene
@@ -102,7 +108,9 @@ def test_any_scene_runs_or_raises_with_a_message(scene: dict) -> None:
     alpha=st.one_of(anything, st.floats(0, 1)),
     cfl=st.one_of(anything, st.floats(0.01, 1)),
 )
-def test_dambreak_builder_refuses_or_builds(dp: float, width: float, height: float, alpha: float, cfl: float) -> None:
+def test_dambreak_builder_refuses_or_builds(
+    dp: float, width: float, height: float, alpha: float, cfl: float
+) -> None:
     try:
         builder = watersim.DamBreak(dim=2, dp=dp, width=width, height=height, alpha=alpha, cfl=cfl)
         scene = builder.to_scene()

@@ -74,3 +74,14 @@ class Simulation:
         ``z`` (n,) [m, NaN when dry] for elevation and run-up gauges, or ``velocity``
         (n, points, dim) [m/s], ``kernel_sum`` (n, points) and ``points`` (points, dim) [m] for
         velocity probes and windows (windows add ``shape``, the counts per axis, x fastest)."""
+    @property
+    def n_excluded(self) -> int:
+        """Fluid particles excluded after leaving the domain."""
+    def checkpoint(self) -> dict[str, Any]:
+        """The full state needed to continue this run exactly: NumPy arrays (``positions``,
+        ``velocities``, ``densities``, ``ids``, ``kinds``, ``velocities_prev``,
+        ``densities_prev``), scalars (``time``, ``steps``, ``dt``, ``n_excluded``), ``energy0``
+        and ``gauges`` (dicts of ``t``, ``values``, ``next_time``)."""
+    def restore(self, checkpoint: dict[str, Any]) -> None:
+        """Continues from ``checkpoint()`` of a run of the same scene; raises SceneError naming
+        the entry that is missing or does not fit."""

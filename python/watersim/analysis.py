@@ -982,7 +982,7 @@ def runup_per_wave(
     swl = float(_finite("still_water_level", still_water_level))
     origin = float(_finite("phase_origin", phase_origin))
     _, last, n_waves = _whole_waves(tt, T, origin, n_waves, "runup")
-    starts = origin + np.arange(last - n_waves + 1, last + 1) * T
+    starts = origin + np.arange(last - n_waves + 1, last + 1, dtype=np.float64) * T
     edges = np.searchsorted(tt, np.append(starts, starts[-1] + T), side="left")
     if np.any(np.diff(edges) == 0):
         raise ValueError("t: some wave period windows hold no sample; the record is too coarse")

@@ -27,7 +27,9 @@ from .simulation import Simulation
 
 __all__ = ["LastGood", "load_checkpoint", "save_checkpoint", "write_state"]
 
-_ARRAYS = ("positions", "velocities", "densities", "ids", "kinds", "velocities_prev", "densities_prev")
+_ARRAYS = (
+    "positions", "velocities", "densities", "ids", "kinds", "velocities_prev", "densities_prev",
+)
 _SCALARS = ("time", "steps", "dt", "n_excluded")
 
 

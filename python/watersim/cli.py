@@ -283,7 +283,9 @@ class _Recorder:
                 self._next_report += self.until / 10.0
 
 
-def _run_summary(case: str, status: str, sim: Any, until: float, wall: float, threads: int) -> dict[str, Any]:
+def _run_summary(
+    case: str, status: str, sim: Any, until: float, wall: float, threads: int
+) -> dict[str, Any]:
     """The summary.json fields every ``watersim run`` case writes."""
     return {
         "case": case,
@@ -455,8 +457,12 @@ def _run_flume(
             while next_report[0] <= s.time:
                 next_report[0] += until / 10.0
 
+    def sample_and_keep(s: Simulation) -> None:
+        on_sample(s)
+        keeper(s)
+
     status, error = _run_recorded(
-        sim, until, [(every, lambda s: (on_sample(s), keeper(s))), *outputs.schedule()], progress,
+        sim, until, [(every, sample_and_keep), *outputs.schedule()], progress,
         outputs, lambda: sim.write_gauges_csv(csv_path),
     )
     wall = time.perf_counter() - t_start
@@ -526,7 +532,9 @@ def _martin_moyce_summary(
 # watersim bench
 
 
-def _scaled_to(build: Callable[[float], Simulation], dp: float, dim: int, n_target: int) -> Simulation:
+def _scaled_to(
+    build: Callable[[float], Simulation], dp: float, dim: int, n_target: int
+) -> Simulation:
     """``build(dp)`` with dp chosen so that the particle count is about ``n_target``."""
     sim = build(dp)
     for _ in range(6):
@@ -575,7 +583,11 @@ def _bench_simulation(args: argparse.Namespace) -> Simulation:
     assert builder.dp is not None
     if not args.particles:
         return builder.build()
-    return _scaled_to(lambda dp: builder.replace(dp=dp).build(), builder.dp, builder.dim, args.particles)
+
+    def build_scaled(dp: float) -> Simulation:
+        return builder.replace(dp=dp).build()
+
+    return _scaled_to(build_scaled, builder.dp, builder.dim, args.particles)
 
 
 def _peak_rss_bytes() -> int | None:
@@ -796,7 +808,9 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument("--out", metavar="FIGDIR", help="where the PNGs go (default DIR/plots)")
     plot.set_defaults(func=cmd_plot)
 
-    bench = sub.add_parser("bench", help="time the solver on a dam break or a DualSPHysics reference case")
+    bench = sub.add_parser(
+        "bench", help="time the solver on a dam break or a DualSPHysics reference case"
+    )
     bench.add_argument("--case", default="dambreak2d", help=f"one of: {', '.join(BENCH_CASES)}")
     bench.add_argument(
         "--particles",

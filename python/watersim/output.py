@@ -93,7 +93,9 @@ class SnapshotWriter:
         root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
         collection = ET.SubElement(root, "Collection")
         for t, name in self.entries:
-            ET.SubElement(collection, "DataSet", timestep=repr(float(t)), group="", part="0", file=name)
+            ET.SubElement(
+                collection, "DataSet", timestep=repr(float(t)), group="", part="0", file=name
+            )
         tmp = self.pvd_path.with_suffix(".pvd.tmp")
         ET.ElementTree(root).write(tmp, xml_declaration=True, encoding="utf-8")
         tmp.replace(self.pvd_path)

@@ -708,8 +708,9 @@ def stable_region(records: Iterable[dict[str, Any]]) -> dict[float, dict[str, An
             if status != "stable":
                 break
             limit = cfl
-        accurate = [c for c, s in rows if s == "stable"
-                    and (errors[(cs, c)] is not None and errors[(cs, c)] <= DENSITY_TARGET)]
+        accurate = [
+            c for c, s in rows if s == "stable" and _within(errors[(cs, c)], DENSITY_TARGET)
+        ]
         out[cs] = {
             "cfl_run": [c for c, _ in rows],
             "not_stable": [c for c, s in rows if s != "stable"],
@@ -717,6 +718,11 @@ def stable_region(records: Iterable[dict[str, Any]]) -> dict[float, dict[str, An
             "density_within_target": accurate,
         }
     return out
+
+
+def _within(error: float | None, limit: float) -> bool:
+    """True when a measured error is known and at most ``limit`` (``None``: not measured)."""
+    return error is not None and error <= limit
 
 
 def _fmt(value: Any, spec: str = ".3g") -> str:
