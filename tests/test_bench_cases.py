@@ -20,6 +20,13 @@ def test_particle_count_matches_dualsphysics(case: str) -> None:
     assert sim.params()["boundary_layers"] == 1
 
 
+@pytest.mark.parametrize("case", sorted(DSPH_CASES))
+def test_walls_are_dualsphysics_dbc(case: str) -> None:
+    # every reference case runs DualSPHysics' dynamic boundary condition, whatever the
+    # builder's own default (the flume's is Adami's walls)
+    assert dsph_scene(case).get("boundary", {"model": "dbc"}) == {"model": "dbc"}
+
+
 def test_settings_are_dualsphysics_own() -> None:
     s3 = dsph_scene("dsph-dambreak3d")
     settings = (s3["kernel"], s3["coefh"], s3["cfl"], s3["coefsound"])

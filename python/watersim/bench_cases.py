@@ -143,6 +143,8 @@ def piston2d(dp: float) -> dict[str, Any]:
             alpha=0.01,
             diffusion="none",
             integrator="symplectic",
+            # DualSPHysics' DBC; the flume's own default is Adami's walls
+            boundary="dbc",
             boundary_layers=1,
             until=10.0,
         )

@@ -1,6 +1,7 @@
 //! Steps a scene given as a JSON file: a target for profilers (`perf record`, callgrind).
 //!
-//! `cargo run --release --example step_scene -- scene.json STEPS`
+//! `cargo run --release --example step_scene -- scene.json STEPS [WARMUP]` (WARMUP untimed
+//! steps first, 3 by default: a developed flow sorts and moves more than the first steps do)
 //! (`watersim bench --case dsph-dambreak3d` prints the same case's figure from Python; write a
 //! case's scene with `python3 -c "import json, watersim.bench_cases as b;
 //! print(json.dumps(b.dsph_scene('dsph-dambreak3d')))" > scene.json`.)
@@ -9,11 +10,12 @@ use std::time::Instant;
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let path = args.next().expect("usage: step_scene SCENE.json [STEPS]");
+    let path = args.next().expect("usage: step_scene SCENE.json [STEPS] [WARMUP]");
     let steps: u64 = args.next().map(|s| s.parse().expect("STEPS: an integer")).unwrap_or(20);
+    let warmup: u64 = args.next().map(|s| s.parse().expect("WARMUP: an integer")).unwrap_or(3);
     let text = std::fs::read_to_string(&path).expect("read the scene file");
     let mut sim = sph_core::build_from_json(&text).unwrap_or_else(|e| panic!("{e}"));
-    sim.step(3).unwrap_or_else(|e| panic!("{e}"));
+    sim.step(warmup).unwrap_or_else(|e| panic!("{e}"));
     let t0 = Instant::now();
     let cpu0 = process_cpu_seconds();
     sim.step(steps).unwrap_or_else(|e| panic!("{e}"));

@@ -47,6 +47,19 @@ pub struct CellGrid<D: Dim> {
     /// Per group, `n_cells + 1` entries; empty for a group the scene does not have
     /// ([`CellGrid::release_group`]), which then has no neighbours.
     starts: [Vec<u32>; GROUPS],
+    /// Per group, the cells `lo..=hi` that held its particles at its last sort, and its slot
+    /// range `first..end`: cells up to `lo` start at `first`, cells after `hi` at `end`, so the
+    /// next sort rewrites only the cells between (see [`CellGrid::sort_group`]).
+    bands: [Option<Band>; GROUPS],
+}
+
+/// See [`CellGrid`]'s `bands`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Band {
+    lo: usize,
+    hi: usize,
+    first: u32,
+    end: u32,
 }
 
 impl<D: Dim> CellGrid<D> {
@@ -69,6 +82,7 @@ impl<D: Dim> CellGrid<D> {
             dims,
             n_cells,
             starts: [empty(), empty(), empty()],
+            bands: [None; GROUPS],
         }
     }
 
@@ -86,6 +100,7 @@ impl<D: Dim> CellGrid<D> {
     /// The group then has no neighbours; sorting particles into it allocates them again.
     pub fn release_group(&mut self, g: usize) {
         self.starts[g] = Vec::new();
+        self.bands[g] = None;
     }
 
     /// Whether group `g` has cell starts (see [`CellGrid::release_group`]).
@@ -127,30 +142,58 @@ impl<D: Dim> CellGrid<D> {
         use rayon::prelude::*;
         let keys = &mut keys[..range.len()];
         let this = &*self;
-        keys.par_iter_mut().zip(pos[range.clone()].par_iter()).for_each(|(k, &p)| *k = this.cell_of(p) as u32);
+        let (k_lo, k_hi) = keys
+            .par_iter_mut()
+            .zip(pos[range.clone()].par_iter())
+            .map(|(k, &p)| {
+                *k = this.cell_of(p) as u32;
+                (*k, *k)
+            })
+            .reduce(|| (u32::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+        let (first, end) = (range.start as u32, range.end as u32);
+        let n_cells = self.n_cells;
+        let starts = &mut self.starts[g];
+        if starts.len() != n_cells + 1 {
+            starts.resize(n_cells + 1, 0);
+            self.bands[g] = None;
+        }
+        if keys.is_empty() {
+            starts.fill(first);
+            self.bands[g] = None;
+            return;
+        }
+        let (k_lo, k_hi) = (k_lo as usize, k_hi as usize);
+        // Only the cells between the lowest and the highest occupied cell, of this sort and the
+        // last, are rewritten: below them every cell starts at `first`, above them at `end`, as
+        // the last sort left them. Most of a flume's cells are air (the grid reaches a tank's
+        // height above the tank): the moving paddle's few particles sorted through every cell
+        // of the grid, twice per Symplectic step, before.
+        let (lo, hi) = match self.bands[g] {
+            Some(b) if b.first == first && b.end == end => (b.lo.min(k_lo), b.hi.max(k_hi)),
+            _ => (0, n_cells - 1),
+        };
+        starts[lo] = first;
 
         // Counting sort without a cursor array: the count of cell c goes to starts[c + 1],
         // which the exclusive prefix sum turns into the first slot of cell c; placing the
         // particles advances it to the cell's end, which is the start of cell c + 1.
-        let n_cells = self.n_cells;
-        let starts = &mut self.starts[g];
-        starts.resize(n_cells + 1, 0);
-        starts.fill(0);
+        let band = &mut starts[lo + 1..=hi + 1];
+        band.fill(0);
         for &k in keys.iter() {
-            starts[k as usize + 1] += 1;
+            band[k as usize - lo] += 1;
         }
-        let mut running = range.start as u32;
-        starts[0] = running;
-        for c in 1..=n_cells {
-            let count = starts[c];
-            starts[c] = running;
+        let mut running = first;
+        for s in band.iter_mut() {
+            let count = *s;
+            *s = running;
             running += count;
         }
         for (i, &k) in keys.iter().enumerate() {
-            let slot = starts[k as usize + 1];
-            starts[k as usize + 1] += 1;
-            perm[slot as usize - range.start] = (range.start + i) as u32;
+            let s = &mut band[k as usize - lo];
+            perm[(*s - first) as usize] = first + i as u32;
+            *s += 1;
         }
+        self.bands[g] = Some(Band { lo: k_lo, hi: k_hi, first, end });
     }
 
     /// The stencil rows around `p`, trimmed to the cells that reach within the support of `p`:
@@ -342,12 +385,52 @@ mod tests {
         check::<Dim3>(pts, DVec3::ZERO, DVec3::ONE, 0.1);
     }
 
+    /// A grid sorted again after its particles moved (its cell band shifted, grew or shrank)
+    /// gives the perm and starts a fresh grid gives.
+    fn resort_matches_fresh(first: &[DVec2], then: &[DVec2], offset: usize) {
+        let n = first.len();
+        let range = offset..offset + n;
+        let padded = |pts: &[DVec2]| {
+            let mut all = vec![DVec2::splat(0.5); offset];
+            all.extend_from_slice(pts);
+            all
+        };
+        let (a, b) = (padded(first), padded(then));
+        let new_grid = || CellGrid::<Dim2>::new(DVec2::ZERO, DVec2::ONE, 0.1, 2);
+        let (mut perm, mut keys) = (vec![0u32; n], vec![0u32; n]);
+        let mut grid = new_grid();
+        grid.sort_group(GROUP_MOVING, range.clone(), &a, &mut perm, &mut keys);
+        grid.sort_group(GROUP_MOVING, range.clone(), &b, &mut perm, &mut keys);
+        let mut fresh = new_grid();
+        let mut fresh_perm = vec![0u32; n];
+        fresh.sort_group(GROUP_MOVING, range, &b, &mut fresh_perm, &mut keys);
+        assert_eq!(perm, fresh_perm);
+        assert_eq!(grid.starts[GROUP_MOVING], fresh.starts[GROUP_MOVING]);
+    }
+
+    #[test]
+    fn a_group_that_moved_resorts_as_a_fresh_grid_sorts_it() {
+        let low: Vec<DVec2> = (0..40).map(|i| DVec2::new(0.02 * i as f64, 0.05)).collect();
+        let high: Vec<DVec2> = (0..40).map(|i| DVec2::new(0.9 - 0.02 * i as f64, 0.95)).collect();
+        let middle: Vec<DVec2> = (0..40).map(|i| DVec2::new(0.5, 0.4 + 0.005 * i as f64)).collect();
+        for (a, b) in [(&low, &high), (&high, &low), (&low, &middle), (&middle, &low), (&middle, &high)] {
+            resort_matches_fresh(a, b, 0);
+            resort_matches_fresh(a, b, 7);
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
         #[test]
         fn random_2d(coords in proptest::collection::vec((-0.2f64..1.2, -0.2f64..1.2), 1..300), r in 0.02f64..0.5) {
             let pts = coords.into_iter().map(|(x, y)| DVec2::new(x, y)).collect();
             check::<Dim2>(pts, DVec2::ZERO, DVec2::ONE, r);
+        }
+        #[test]
+        fn random_resort(moves in proptest::collection::vec(((0.0f64..1.0, 0.0f64..1.0), (-0.3f64..1.3, -0.3f64..1.3)), 1..200)) {
+            let (a, b): (Vec<DVec2>, Vec<DVec2>) =
+                moves.into_iter().map(|((x, y), (u, v))| (DVec2::new(x, y), DVec2::new(u, v))).unzip();
+            resort_matches_fresh(&a, &b, 3);
         }
         #[test]
         fn random_3d(coords in proptest::collection::vec((-0.2f64..1.2, -0.2f64..1.2, 0.0f64..1.0), 1..300), r in 0.05f64..0.5) {

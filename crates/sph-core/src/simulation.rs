@@ -12,7 +12,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
-use crate::particles::{permute, permute_vectors, Particles, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
+use crate::particles::{mark_moved_blocks, par_copy, permute, permute_vectors, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{
@@ -165,6 +165,8 @@ struct ShiftState<D: Dim> {
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     perm: Vec<u32>,
+    /// One flag per [`PERMUTE_BLOCK`] slots: whether the last sort moved a particle there.
+    moved: Vec<bool>,
     /// Gather buffer of `permute`, shared by all arrays (see there). Empty when the fluid
     /// accelerations are large enough to serve instead (`Solver::sort_group`).
     gather: Vec<u64>,
@@ -279,7 +281,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let dt_floor = 1e-6 * c.h / c.c0;
         // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
-        let scratch = Scratch { perm: vec![0; n], gather };
+        let scratch = Scratch { perm: vec![0; n], gather, moved: vec![false; n.div_ceil(PERMUTE_BLOCK)] };
         let mut solver = Self {
             scene,
             c,
@@ -680,7 +682,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         if range.is_empty() {
             return;
         }
-        let Scratch { perm, gather } = &mut self.scratch;
+        let Scratch { perm, gather, moved } = &mut self.scratch;
         let Particles { pos, vel, rho, id, kind, acc, .. } = &mut self.p;
         // The gather buffer: the fluid accelerations where they are large enough (8 bytes a
         // particle less to hold). They are dead here: every sort comes right before a force
@@ -691,19 +693,23 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let keys = bytemuck::cast_slice_mut::<u64, u32>(gather);
         self.grid.sort_group(g, range.clone(), pos, perm, keys);
         let perm = &*perm;
-        permute_vectors(pos, range.clone(), perm, gather);
-        permute_vectors(vel, range.clone(), perm, gather);
-        permute(rho, range.clone(), perm, gather);
-        permute(id, range.clone(), perm, gather);
-        permute(kind, range.clone(), perm, gather);
+        if mark_moved_blocks(perm, range.start, moved) == 0 {
+            return;
+        }
+        let moved = &moved[..];
+        permute_vectors(pos, range.clone(), perm, moved, gather);
+        permute_vectors(vel, range.clone(), perm, moved, gather);
+        permute(rho, range.clone(), perm, moved, gather);
+        permute(id, range.clone(), perm, moved, gather);
+        permute(kind, range.clone(), perm, moved, gather);
         match &mut self.history {
             History::Symplectic { vel0, rho0 } => {
-                permute_vectors(vel0, range.clone(), perm, gather);
-                permute(rho0, range.clone(), perm, gather);
+                permute_vectors(vel0, range.clone(), perm, moved, gather);
+                permute(rho0, range.clone(), perm, moved, gather);
             }
             History::Verlet { vel_prev, rho_prev, .. } => {
-                permute_vectors(vel_prev, range.clone(), perm, gather);
-                permute(rho_prev, range.clone(), perm, gather);
+                permute_vectors(vel_prev, range.clone(), perm, moved, gather);
+                permute(rho_prev, range.clone(), perm, moved, gather);
             }
         }
     }
@@ -851,8 +857,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 let dt = self.time_step(lim)?;
                 let half = 0.5 * dt;
                 let History::Symplectic { vel0, rho0: rho_n } = &mut self.history else { unreachable!() };
-                vel0.copy_from_slice(&self.p.vel);
-                rho_n.copy_from_slice(&self.p.rho);
+                par_copy(vel0, &self.p.vel);
+                par_copy(rho_n, &self.p.rho);
                 let p = &mut self.p;
                 p.rho.par_iter_mut().zip(p.drho.par_iter()).enumerate().for_each(|(i, (r, &d))| {
                     if i < fs && walls_from_fluid {
@@ -1047,7 +1053,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
         };
         let s = &self.scratch;
-        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8;
+        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8 + s.moved.capacity();
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()
