@@ -1,5 +1,6 @@
 """Replace the (case, resolution) runs of runs.json by the reruns in the given JSON files, in
-place."""
+place; a run at a resolution runs.json does not hold yet goes after its case's last run, in
+resolution order."""
 import json
 import sys
 
@@ -22,8 +23,13 @@ for i, r in enumerate(runs):
               f"wall {old['wall_s']:.1f} -> {rerun['wall_s']:.1f}, "
               f"cpu {old['cpu_s']:.1f} -> {rerun['cpu_s']:.1f}, "
               f"status {rerun['status']}, errors {old['errors']} -> {rerun['errors']}")
-missing = set(new) - seen
-assert not missing, missing
+for key in sorted(set(new) - seen, key=lambda k: k[1]):
+    same_case = [i for i, r in enumerate(runs) if r["case"] == key[0]]
+    assert same_case, f"{key}: no run of this case in {path}"
+    at = max((i for i in same_case if float(runs[i]["resolution"]) < key[1]), default=same_case[0] - 1)
+    runs.insert(at + 1, new[key])
+    print(f"{key}: added, dp {new[key]['dp']:.6g}, particles {new[key]['n_particles']}, "
+          f"cpu {new[key]['cpu_s']:.1f}, status {new[key]['status']}, errors {new[key]['errors']}")
 with open(path, "w") as fh:
     json.dump(runs, fh, indent=1)
     fh.write("\n")
