@@ -54,7 +54,7 @@ pub struct CellGrid<D: Dim> {
 }
 
 /// See [`CellGrid`]'s `bands`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 struct Band {
     lo: usize,
     hi: usize,

@@ -90,6 +90,34 @@ pub fn mark_moved_blocks(perm: &[u32], start: usize, moved: &mut [bool]) -> usiz
         .sum()
 }
 
+/// `buf[s] = value(perm[s])` for the slots `s` of the blocks `moved` marks.
+fn gather_moved<B: Send>(buf: &mut [B], perm: &[u32], moved: &[bool], value: impl Fn(usize) -> B + Sync) {
+    use rayon::prelude::*;
+    buf.par_chunks_mut(PERMUTE_BLOCK).zip(perm.par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
+        |((dst, block), &m)| {
+            if m {
+                for (d, &old) in dst.iter_mut().zip(block) {
+                    *d = value(old as usize);
+                }
+            }
+        },
+    );
+}
+
+/// `put(&mut data[s], buf[s])` for the slots `s` of the blocks `moved` marks.
+fn put_moved<T: Send, B: Copy + Sync>(data: &mut [T], buf: &[B], moved: &[bool], put: impl Fn(&mut T, B) + Sync) {
+    use rayon::prelude::*;
+    data.par_chunks_mut(PERMUTE_BLOCK).zip(buf.par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
+        |((dst, b), &m)| {
+            if m {
+                for (d, &x) in dst.iter_mut().zip(b) {
+                    put(d, x);
+                }
+            }
+        },
+    );
+}
+
 /// Applies `perm` (new slot -> old absolute index) to `data[range]` in the blocks `moved`
 /// marks ([`mark_moved_blocks`]; the others are the identity), gathering through `scratch`:
 /// one 8-byte-per-particle buffer serves every array (reinterpreted as `T`), so sorting costs
@@ -102,26 +130,11 @@ pub fn permute<T: bytemuck::Pod + Send + Sync>(
     moved: &[bool],
     scratch: &mut [u64],
 ) {
-    use rayon::prelude::*;
     let n = range.len();
     let buf = &mut bytemuck::cast_slice_mut::<u64, T>(scratch)[..n];
     let src = &*data;
-    buf.par_chunks_mut(PERMUTE_BLOCK).zip(perm[..n].par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
-        |((dst, block), &m)| {
-            if m {
-                for (d, &old) in dst.iter_mut().zip(block) {
-                    *d = src[old as usize];
-                }
-            }
-        },
-    );
-    data[range].par_chunks_mut(PERMUTE_BLOCK).zip(buf.par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
-        |((dst, b), &m)| {
-            if m {
-                dst.copy_from_slice(b);
-            }
-        },
-    );
+    gather_moved(buf, &perm[..n], moved, |old| src[old]);
+    put_moved(&mut data[range], buf, moved, |d, x| *d = x);
 }
 
 /// [`permute`] for vectors, one component at a time through the same 8-byte buffer.
@@ -132,29 +145,12 @@ pub fn permute_vectors<V: Vector>(
     moved: &[bool],
     scratch: &mut [u64],
 ) {
-    use rayon::prelude::*;
     let n = range.len();
     let buf = &mut bytemuck::cast_slice_mut::<u64, Real>(scratch)[..n];
     let dim = std::mem::size_of::<V>() / std::mem::size_of::<Real>();
     for k in 0..dim {
         let src = &*data;
-        buf.par_chunks_mut(PERMUTE_BLOCK).zip(perm[..n].par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
-            |((dst, block), &m)| {
-                if m {
-                    for (d, &old) in dst.iter_mut().zip(block) {
-                        *d = src[old as usize].get(k);
-                    }
-                }
-            },
-        );
-        data[range.clone()].par_chunks_mut(PERMUTE_BLOCK).zip(buf.par_chunks(PERMUTE_BLOCK)).zip(moved.par_iter()).for_each(
-            |((dst, b), &m)| {
-                if m {
-                    for (v, &x) in dst.iter_mut().zip(b) {
-                        v.set(k, x);
-                    }
-                }
-            },
-        );
+        gather_moved(buf, &perm[..n], moved, |old| src[old].get(k));
+        put_moved(&mut data[range.clone()], buf, moved, |v, x| v.set(k, x));
     }
 }
