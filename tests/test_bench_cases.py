@@ -53,6 +53,11 @@ def test_bench_reports_the_comparison_with_dualsphysics() -> None:
     assert result["dsph_us_per_particle_step"] == {"1": 1.16, "2": 0.7}
     assert result["speedup_vs_dsph"] == pytest.approx(1.16 / result["us_per_particle_step"])
     assert isinstance(result["meets_target"], bool) and result["peak_rss_bytes"] > 0
+    # Verlet: one force evaluation per step; a full 2D support at coefh 1 holds some 24 pairs
+    assert result["force_evaluations_per_step"] == 1
+    assert 10 < result["pairs_per_fluid_particle"] < 25
+    assert result["ns_per_pair"] == pytest.approx(
+        1e9 * result["wall_s"] / (result["fluid_pairs"] * result["steps"]))
     assert 0 < result["baseline_rss_bytes"] < result["peak_rss_bytes"]
     assert result["peak_rss_above_baseline_per_particle"] == pytest.approx(
         (result["peak_rss_bytes"] - result["baseline_rss_bytes"]) / result["n_particles"])
@@ -63,9 +68,22 @@ def test_bench_refuses_overrides_of_a_reference_case() -> None:
     assert proc.returncode == 2 and "--set" in proc.stderr
 
 
+@pytest.mark.parametrize("case", sorted(DSPH_CASES))
+def test_pair_terms_are_dualsphysics_float(case: str) -> None:
+    # DualSPHysics' CPU solver forms its pair terms in float; WaterSim's default is f64
+    assert dsph_scene(case)["force_precision"] == "f32"
+    assert Simulation(dsph_scene(case)).scene["force_precision"] == "f32"
+
+
 def test_a_reference_case_takes_the_force_precision() -> None:
+    for precision in ("f32", "f64"):
+        proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps",
+                       "2", "--set", f"force_precision={precision}", "--json",
+                       env={"RAYON_NUM_THREADS": "1"})
+        assert proc.returncode == 0, proc.stderr
+        assert json.loads(proc.stdout)["force_precision"] == precision
     proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps", "2",
-                   "--set", "force_precision=f32", "--json", env={"RAYON_NUM_THREADS": "1"})
+                   "--json", env={"RAYON_NUM_THREADS": "1"})
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["force_precision"] == "f32"
     proc = run_cli("bench", "--case", "dsph-piston2d", "--set", "force_precision=f16")

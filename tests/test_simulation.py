@@ -16,6 +16,17 @@ def small_dambreak() -> Simulation:
     return DamBreak(dp=0.1).build()
 
 
+def test_fluid_pairs_are_the_pairs_within_the_support(small_dambreak: Simulation) -> None:
+    sim = small_dambreak
+    sim.step(30)  # particles moved since the solver's last sort
+    pos, fluid = sim.positions, sim.kinds == 0
+    r2 = ((pos[fluid][:, None, :] - pos[None, :, :]) ** 2).sum(axis=-1)
+    # every particle closer than the support, the particle itself (r = 0) not counted
+    expected = int(np.count_nonzero(r2 < sim.params()["support"] ** 2)) - int(fluid.sum())
+    assert sim.fluid_pairs() == expected > 0
+    assert sim.force_evaluations_per_step() == (2 if sim.scene["integrator"]["scheme"] == "symplectic" else 1)
+
+
 def test_arrays_have_the_contract_shapes_and_types(small_dambreak: Simulation) -> None:
     sim = small_dambreak
     n, d = sim.n_particles, sim.dim

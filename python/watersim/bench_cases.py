@@ -4,7 +4,11 @@ speed per particle-step on the same machine).
 Each case reproduces a DualSPHysics example's geometry and numerical settings, so that the
 microseconds per particle-step compare like with like: same particle count (one layer of
 boundary particles, as DualSPHysics' ``drawbox`` makes), same kernel and ``coefh``, viscosity,
-density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsound``.
+density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsound``, and
+DualSPHysics' precision: its CPU solver forms every pair term in f32 (positions in double, the
+differences rounded to float), so the cases run WaterSim's f32 pair terms
+(``force_precision = "f32"``: offsets formed in f64 and rounded once, sums over lanes in f64, the
+state in f64). ``watersim bench --set force_precision=f64`` times WaterSim's default instead.
 
 =====================  =========================================================================
 ``dsph-dambreak3d``    ``CaseDambreak``: tank 1.6 x 0.67 x 0.4 m, water 0.4 x 0.67 x 0.3 m at the
@@ -70,6 +74,8 @@ def _common(dim: int, dp: float, **kw: Any) -> dict[str, Any]:
         "coefsound": 20.0,
         # DualSPHysics' drawbox boundaries are one particle layer thick
         "boundary_layers": 1,
+        # DualSPHysics' CPU pair terms are float (module docstring)
+        "force_precision": "f32",
     }
     scene.update(kw)
     return scene
@@ -146,6 +152,8 @@ def piston2d(dp: float) -> dict[str, Any]:
             # DualSPHysics' DBC; the flume's own default is Adami's walls
             boundary="dbc",
             boundary_layers=1,
+            # DualSPHysics' CPU pair terms are float (module docstring)
+            force_precision="f32",
             until=10.0,
         )
     return scene.to_scene()

@@ -550,9 +550,9 @@ def _scaled_to(
 
 
 def _dsph_force_precision(case: str, settings: list[str]) -> str:
-    """The one override a DualSPHysics case takes: ``force_precision`` (DualSPHysics itself
-    forms its forces in f32, WaterSim's default is f64)."""
-    precision = "f64"
+    """The one override a DualSPHysics case takes: ``force_precision`` (the cases run f32 pair
+    terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64)."""
+    precision = str(dsph_scene(case)["force_precision"])
     for key, text in _split_settings(settings):
         if key != "force_precision":
             raise CliError(
@@ -637,7 +637,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
     except InstabilityError as exc:
         status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
     n = sim.n_particles
+    # before the pair count, whose sorted copy of the positions is not the simulation's
     peak_rss = _peak_rss_bytes()
+    # the work of the timed steps: the pairs at their end (the flow changes little over them)
+    pairs = sim.fluid_pairs()
+    evaluations = sim.force_evaluations_per_step()
+    pair_terms = pairs * evaluations * args.steps
     result: dict[str, Any] = {
         "case": args.case,
         "status": status,
@@ -649,6 +654,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
         "wall_s": wall,
         "particle_steps_per_s": n * args.steps / wall if wall > 0 else None,
         "us_per_particle_step": 1e6 * wall / (n * args.steps) if wall > 0 else None,
+        # O(N) in the neighbour work: the pairs per fluid particle grow with the share of the
+        # fluid a support away from every wall and from the surface, the time per pair not
+        "fluid_pairs": pairs,
+        "pairs_per_fluid_particle": pairs / sim.n_fluid if sim.n_fluid else None,
+        "force_evaluations_per_step": evaluations,
+        "ns_per_pair": 1e9 * wall / pair_terms if wall > 0 and pair_terms else None,
         "bytes_per_particle": sim.memory_bytes() / n,
         "memory_bytes": sim.memory_bytes(),
         "threads": threads,

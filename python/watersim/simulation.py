@@ -141,6 +141,20 @@ class Simulation:
         """Bytes of the solver's own particle and cell arrays (capacity-based)."""
         return self._sim.memory_bytes()
 
+    def fluid_pairs(self) -> int:
+        """Pairs one fluid force evaluation sums over at the present positions: each fluid
+        particle with every other particle closer than the kernel support.
+
+        A step costs about this many pair terms times :meth:`force_evaluations_per_step`; per
+        particle the count depends on how much of the scene lies near a wall or the free
+        surface. A diagnostic (it sorts a copy of the positions, about 9 bytes per particle
+        plus the positions while it runs), not for every step."""
+        return int(self._sim.fluid_pairs())
+
+    def force_evaluations_per_step(self) -> int:
+        """Fluid force evaluations per time step: 2 with Symplectic, 1 with Verlet."""
+        return int(self._sim.force_evaluations_per_step())
+
     def params(self) -> dict[str, Any]:
         """Derived parameters: ``h``, ``c0``, ``mass``, ``b_tait``, ``rho0``, ``dp``, ..."""
         return self._sim.params()

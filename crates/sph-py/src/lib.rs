@@ -158,6 +158,17 @@ impl Simulation {
         self.inner.memory_bytes()
     }
 
+    /// Fluid pairs within the support at the present positions (one force evaluation's work).
+    fn fluid_pairs(&self, py: Python<'_>) -> u64 {
+        let inner = &self.inner;
+        py.detach(|| inner.fluid_pairs())
+    }
+
+    /// Fluid force evaluations per step (2 Symplectic, 1 Verlet).
+    fn force_evaluations_per_step(&self) -> u32 {
+        self.inner.force_evaluations_per_step()
+    }
+
     /// Derived parameters (h, c0, mass, ...) as a dict.
     fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let p = self.inner.params();
