@@ -137,6 +137,16 @@ def _bench(*extra: str) -> dict:
     return json.loads(proc.stdout)
 
 
+def test_bench_repeat_reports_the_median_run() -> None:
+    result = _bench("--particles", "2000", "--repeat", "3")
+    assert result["repeat"] == 3 and len(result["wall_s_runs"]) == 3
+    assert result["wall_s"] == sorted(result["wall_s_runs"])[1]
+    assert result["us_per_particle_step"] == pytest.approx(
+        1e6 * result["wall_s"] / (result["n_particles"] * result["steps"]))
+    proc = run_cli("bench", "--case", "dambreak2d", "--repeat", "0")
+    assert proc.returncode == 2 and "--repeat" in proc.stderr
+
+
 def test_bench_prints_one_json_object() -> None:
     result = _bench("--particles", "4000")
     assert BENCH_KEYS <= set(result)

@@ -7,7 +7,7 @@
     watersim show-scene CASE|FILE.toml [--set ...]     (or --reference)
     watersim plot DIR
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
-                   [--particles N] [--steps K] [--set ...] [--json]
+                   [--particles N] [--steps K] [--warmup W] [--repeat R] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
@@ -36,6 +36,7 @@ import csv
 import json
 import math
 import os
+import statistics
 import sys
 import time
 import typing
@@ -620,6 +621,8 @@ def cmd_bench(args: argparse.Namespace) -> int:
         raise CliError(f"--particles: must be at least 10, got {args.particles}")
     if args.steps < 1 or args.warmup < 0:
         raise CliError("--steps: must be at least 1 (and --warmup not negative)")
+    if args.repeat < 1:
+        raise CliError(f"--repeat: must be at least 1, got {args.repeat}")
     # what the process holds before the simulation exists (interpreter, NumPy, the module)
     baseline_rss = _current_rss_bytes()
     sim = _bench_simulation(args)
@@ -628,12 +631,16 @@ def cmd_bench(args: argparse.Namespace) -> int:
     status = "ok"
     error: dict[str, Any] | None = None
     wall = math.nan
+    # one wall time per run of K steps: on a shared host single runs scatter by 10-30 %
+    walls: list[float] = []
     try:
         if args.warmup:
             sim.step(args.warmup)
-        t0 = time.perf_counter()
-        sim.step(args.steps)
-        wall = time.perf_counter() - t0
+        for _ in range(args.repeat):
+            t0 = time.perf_counter()
+            sim.step(args.steps)
+            walls.append(time.perf_counter() - t0)
+        wall = statistics.median(walls)
     except InstabilityError as exc:
         status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
     n = sim.n_particles
@@ -651,7 +658,10 @@ def cmd_bench(args: argparse.Namespace) -> int:
         "n_fluid": sim.n_fluid,
         "steps": args.steps,
         "warmup_steps": args.warmup,
+        "repeat": args.repeat,
+        # the median of the runs' wall times; every figure per step below is from it
         "wall_s": wall,
+        "wall_s_runs": walls,
         "particle_steps_per_s": n * args.steps / wall if wall > 0 else None,
         "us_per_particle_step": 1e6 * wall / (n * args.steps) if wall > 0 else None,
         # O(N) in the neighbour work: the pairs per fluid particle grow with the share of the
@@ -832,6 +842,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench.add_argument("--steps", type=int, default=20, metavar="K", help="timed steps (20)")
     bench.add_argument("--warmup", type=int, default=3, metavar="W", help="untimed steps (3)")
+    bench.add_argument("--repeat", type=int, default=1, metavar="R",
+                       help="time R runs of K steps in a row and report their median (1)")
     bench.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     bench.add_argument("--json", action="store_true", help="print one JSON object")
     bench.set_defaults(func=cmd_bench)
