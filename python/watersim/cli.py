@@ -550,10 +550,11 @@ def _scaled_to(
     return sim
 
 
-def _dsph_force_precision(case: str, settings: list[str]) -> str:
+def _dsph_overrides(case: str, settings: list[str]) -> dict[str, str]:
     """The one override a DualSPHysics case takes: ``force_precision`` (the cases run f32 pair
-    terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64)."""
-    precision = str(dsph_scene(case)["force_precision"])
+    terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64). Empty
+    without ``--set``: the case's own scene then stands as it is."""
+    overrides: dict[str, str] = {}
     for key, text in _split_settings(settings):
         if key != "force_precision":
             raise CliError(
@@ -566,18 +567,19 @@ def _dsph_force_precision(case: str, settings: list[str]) -> str:
                 f"--set: force_precision must be one of {', '.join(FORCE_PRECISIONS)}, "
                 f"got {precision!r}"
             )
-    return precision
+        overrides["force_precision"] = precision
+    return overrides
 
 
 def _bench_simulation(args: argparse.Namespace) -> Simulation:
     """The simulation ``watersim bench`` times: a built-in dam break or a DualSPHysics case."""
     if args.case in DSPH_CASES:
-        precision = _dsph_force_precision(args.case, args.set or [])
+        overrides = _dsph_overrides(args.case, args.set or [])
         spec = DSPH_CASES[args.case]
         dim = int(dsph_scene(args.case)["dim"])
 
         def build(dp: float) -> Simulation:
-            return Simulation({**dsph_scene(args.case, dp), "force_precision": precision})
+            return Simulation({**dsph_scene(args.case, dp), **overrides})
 
         return _scaled_to(build, spec.dp, dim, args.particles) if args.particles else build(spec.dp)
     builder = builder_from_args(args.case, args.set or [])
