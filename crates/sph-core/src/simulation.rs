@@ -863,18 +863,31 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn check(&self) -> Result<()> {
         let (lo, hi) = (self.c.rho0 * (1.0 - self.c.density_band), self.c.rho0 * (1.0 + self.c.density_band));
         let p = &self.p;
-        let bad = (0..p.len())
-            .into_par_iter()
-            .filter_map(|i| {
-                let finite = p.pos[i].is_finite() && p.vel[i].is_finite() && p.rho[i].is_finite();
-                if !finite {
-                    Some((p.id[i], i, InstabilityKind::NonFinite))
-                } else if p.rho[i] < lo || p.rho[i] > hi {
-                    Some((p.id[i], i, InstabilityKind::DensityOutOfRange))
-                } else {
-                    None
-                }
+        let verdict = |i: usize| {
+            let finite = p.pos[i].is_finite() && p.vel[i].is_finite() && p.rho[i].is_finite();
+            if !finite {
+                Some((p.id[i], i, InstabilityKind::NonFinite))
+            } else if p.rho[i] < lo || p.rho[i] > hi {
+                Some((p.id[i], i, InstabilityKind::DensityOutOfRange))
+            } else {
+                None
+            }
+        };
+        // A branch-free test per chunk first, which vectorises; only a chunk that fails it is
+        // searched particle by particle (the per-particle search over every slot took 2 % of
+        // a 2D step).
+        const CHECK_CHUNK: usize = 2048;
+        let bad = p
+            .pos
+            .par_chunks(CHECK_CHUNK)
+            .zip(p.vel.par_chunks(CHECK_CHUNK))
+            .zip(p.rho.par_chunks(CHECK_CHUNK))
+            .enumerate()
+            .filter(|(_, ((x, v), r))| {
+                // NaN fails both density compares
+                !x.iter().zip(*v).zip(*r).fold(true, |ok, ((x, v), &r)| ok & x.is_finite() & v.is_finite() & (r >= lo) & (r <= hi))
             })
+            .flat_map_iter(|(c, _)| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(p.len())).filter_map(verdict))
             .min_by_key(|&(id, _, _)| id);
         match bad {
             None => Ok(()),
@@ -1378,6 +1391,35 @@ mod batched_loop_tests {
 
     /// The pair count against every pair tested, after steps that moved the particles since
     /// the grid's last sort, and the evaluations per step of both integrators.
+    #[test]
+    fn the_monitor_names_the_lowest_id_among_bad_particles_in_any_chunk() {
+        // 2D dam break of dp 0.005: 4,800 fluid particles, three of the monitor's chunks
+        let json = r#"{"dim": 2, "dp": 0.005, "tank": {"min": [0, 0], "max": [1.0, 0.6]}, "fluid": [{"min": [0, 0], "max": [0.3, 0.4]}]}"#;
+        let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(json).expect("scene")).expect("solver");
+        assert!(s.check().is_ok());
+        let n = s.p.len();
+        assert!(n > 2 * 2048, "{n} particles");
+        let slot_of = |s: &Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>, id: u32| s.p.id.iter().position(|&i| i == id).unwrap();
+        let expect = |s: &Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>, kind: InstabilityKind, id: u32| match s.check() {
+            Err(Error::Instability { kind: k, particle, .. }) => assert_eq!((k, particle), (kind, id)),
+            other => panic!("expected {kind:?} of particle {id}, got {other:?}"),
+        };
+        // a density out of band on the highest id, then a NaN on a lower id in another chunk,
+        // then an infinity on the lowest id: the lowest bad id is reported wherever its slot is
+        let (lowest, highest) = (s.p.id.iter().copied().min().unwrap(), s.p.id.iter().copied().max().unwrap());
+        let high = slot_of(&s, highest);
+        s.p.rho[high] = s.c.rho0 * (1.0 + 2.0 * s.c.density_band);
+        expect(&s, InstabilityKind::DensityOutOfRange, highest);
+        let other = if high < n / 2 { n - 10 } else { 10 };
+        let id_other = s.p.id[other];
+        assert!(id_other != lowest && id_other != highest);
+        s.p.pos[other].x = Real::NAN;
+        expect(&s, InstabilityKind::NonFinite, id_other);
+        let low = slot_of(&s, lowest);
+        s.p.vel[low].y = Real::INFINITY;
+        expect(&s, InstabilityKind::NonFinite, lowest);
+    }
+
     #[test]
     fn fluid_pair_count_is_every_pair_within_the_support() {
         for (dim, integrator, evaluations) in [(2, "symplectic", 2), (3, "verlet", 1)] {

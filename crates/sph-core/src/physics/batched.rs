@@ -533,6 +533,9 @@ fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF:
     acc.par_chunks_mut(CHUNK)
         .zip(drho.par_chunks_mut(CHUNK))
         .enumerate()
+        // one chunk per task (see super::NEIGHBOUR_TASK): with rayon's default split a thread
+        // could sit idle for a tenth of the loop on two threads, 2D dam break (Session 12)
+        .with_max_len(1)
         .map(|(ci, (acc_c, drho_c))| {
             let first = ci * CHUNK;
             #[cfg(target_arch = "x86_64")]

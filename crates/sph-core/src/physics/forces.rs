@@ -7,7 +7,7 @@
 use rayon::prelude::*;
 
 use super::eos::{density_at_pressure, pressure, sound_speed};
-use super::{Constants, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
+use super::{Constants, NEIGHBOUR_TASK, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
@@ -131,6 +131,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     acc.par_iter_mut()
         .zip(drho.par_iter_mut())
         .enumerate()
+        .with_max_len(NEIGHBOUR_TASK)
         .map(|(i, (acc_a, drho_a))| {
             let a = f.fluid_start + i;
             if f.kind[a] == KIND_EXCLUDED {
@@ -237,7 +238,7 @@ pub fn boundary_density_rate<D: Dim, K: Kernel>(
     drho: &mut [Real],
 ) {
     let support2 = c.support * c.support;
-    drho.par_iter_mut().enumerate().for_each(|(a, drho_a)| {
+    drho.par_iter_mut().enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(a, drho_a)| {
         let (pa, va) = (f.pos[a], f.vel[a]);
         let mut sum = 0.0;
         for_each_pair(grid, support2, GROUP_FLUID, f.pos, pa, |b, r, _, dist| {
@@ -269,7 +270,7 @@ pub fn wall_density_from_fluid<D: Dim, K: Kernel>(
     let fs = rho_walls.len();
     let mut g = D::V::ZERO;
     g.set(D::DIM - 1, -c.gravity);
-    rho_walls.par_iter_mut().enumerate().for_each(|(w, rho_w)| {
+    rho_walls.par_iter_mut().enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(w, rho_w)| {
         let body = if w >= n_fixed && !wall_acc.is_empty() { g - wall_acc[w - n_fixed] } else { g };
         let (mut w_sum, mut p_sum) = (0.0, 0.0);
         for_each_pair(grid, support2, GROUP_FLUID, pos, pos[w], |b, r, _, dist| {
@@ -299,7 +300,7 @@ pub fn sps_stress<D: Dim, K: Kernel>(
     tau: &mut [D::Sym],
 ) {
     let support2 = c.support * c.support;
-    tau.par_iter_mut().enumerate().for_each(|(i, tau_a)| {
+    tau.par_iter_mut().enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(i, tau_a)| {
         let a = f.fluid_start + i;
         let (pa, va) = (f.pos[a], f.vel[a]);
         let mut strain = D::Sym::default();
@@ -330,7 +331,7 @@ pub fn shifting_fields<D: Dim, K: Kernel>(
     div: &mut [Real],
 ) {
     let support2 = c.support * c.support;
-    grad.par_iter_mut().zip(div.par_iter_mut()).enumerate().for_each(|(i, (grad_a, div_a))| {
+    grad.par_iter_mut().zip(div.par_iter_mut()).enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(i, (grad_a, div_a))| {
         let a = f.fluid_start + i;
         let (mut g, mut d) = (D::V::ZERO, 0.0);
         if f.kind[a] != KIND_EXCLUDED {

@@ -9,6 +9,13 @@ pub mod forces;
 use crate::math::Real;
 use crate::scene::{Diffusion, ForcePrecision, Scene, Viscosity};
 
+/// Most particles in one rayon task of a per-particle neighbour loop. Rayon splits an indexed
+/// loop adaptively into about four pieces per thread and splits a piece again only when
+/// another thread steals it: the thread that finishes first then waits while the other ends
+/// a piece of up to a quarter of the loop, as it can steal nothing smaller. With tasks this
+/// small the tail is one task (docs/benchmarks.md, Session 12).
+pub const NEIGHBOUR_TASK: usize = 64;
+
 /// Viscosity model as a const generic of the force loop.
 pub const VISC_ARTIFICIAL: u8 = 0;
 pub const VISC_LAMINAR: u8 = 1;
