@@ -147,6 +147,22 @@ def test_bench_repeat_reports_the_median_run() -> None:
     assert proc.returncode == 2 and "--repeat" in proc.stderr
 
 
+def test_bench_compare_threads_times_both_counts_in_turn() -> None:
+    result = _bench("--particles", "2000", "--repeat", "3", "--compare-threads", "1,2")
+    comparison = result["thread_comparison"]
+    assert comparison["threads"] == [1, 2] and comparison["rounds"] == 3
+    runs = comparison["wall_s_runs"]
+    assert len(runs["1"]) == len(runs["2"]) == 3
+    assert comparison["speedup_runs"] == pytest.approx([a / b for a, b in zip(runs["1"], runs["2"])])
+    assert comparison["speedup"] == sorted(comparison["speedup_runs"])[1]
+    for t in ("1", "2"):
+        assert comparison["us_per_particle_step"][t] == pytest.approx(
+            1e6 * sorted(runs[t])[1] / (result["n_particles"] * result["steps"]))
+    for bad in ("2", "1,1", "0,2", "one,two"):
+        proc = run_cli("bench", "--case", "dambreak2d", "--compare-threads", bad)
+        assert proc.returncode == 2 and "--compare-threads" in proc.stderr, bad
+
+
 def test_bench_prints_one_json_object() -> None:
     result = _bench("--particles", "4000")
     assert BENCH_KEYS <= set(result)

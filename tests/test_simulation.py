@@ -104,6 +104,18 @@ def test_state_is_reproducible_and_changes_when_stepping() -> None:
     assert a.state_sha256() != b.state_sha256()
 
 
+def test_steps_on_any_thread_count_follow_the_same_trajectory() -> None:
+    # dp 0.03: some 1,400 particles, several tasks per parallel loop
+    a, b = DamBreak(dp=0.03).build(), DamBreak(dp=0.03).build()
+    a.step(30)
+    for threads in (1, 3, 2):
+        b.step(10, threads=threads)
+    assert a.state_sha256() == b.state_sha256()
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(ValueError, match="threads"):
+            b.step(1, threads=bad)
+
+
 def test_step_and_run_advance_time(small_dambreak: Simulation) -> None:
     sim = small_dambreak
     sim.step()

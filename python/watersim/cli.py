@@ -7,7 +7,8 @@
     watersim show-scene CASE|FILE.toml [--set ...]     (or --reference)
     watersim plot DIR
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
-                   [--particles N] [--steps K] [--warmup W] [--repeat R] [--set ...] [--json]
+                   [--particles N] [--steps K] [--warmup W] [--repeat R] [--compare-threads A,B]
+                   [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
@@ -615,6 +616,47 @@ def _current_rss_bytes() -> int | None:
     return None  # pragma: no cover
 
 
+def _thread_counts(text: str) -> tuple[int, int]:
+    """``--compare-threads A,B``: two different positive thread counts."""
+    try:
+        a, b = (int(part) for part in text.split(","))
+    except ValueError:
+        raise CliError(f"--compare-threads: two thread counts A,B, e.g. 1,2; got {text!r}") from None
+    if a < 1 or b < 1 or a == b:
+        raise CliError(f"--compare-threads: two different counts of at least 1, got {text!r}")
+    return a, b
+
+
+def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int, rounds: int) -> dict[str, Any]:
+    """Times ``rounds`` rounds of K steps on A threads and K steps on B threads, in turn on one
+    simulation (the results do not depend on the thread count), each pool started and warmed by
+    one untimed step first. On a shared host single runs scatter by 10-30 % from one minute to
+    the next; the two runs of a round are adjacent in time, so their ratio drifts far less. The
+    order alternates (A B, B A, ...) so that a steady drift favours neither. ``speedup`` is the
+    median over rounds of time on A / time on B."""
+    a, b = counts
+    for t in counts:
+        sim.step(1, threads=t)
+    runs: dict[int, list[float]] = {a: [], b: []}
+    ratios: list[float] = []
+    for r in range(rounds):
+        wall: dict[int, float] = {}
+        for t in (a, b) if r % 2 == 0 else (b, a):
+            t0 = time.perf_counter()
+            sim.step(steps, threads=t)
+            wall[t] = time.perf_counter() - t0
+            runs[t].append(wall[t])
+        ratios.append(wall[a] / wall[b])
+    return {
+        "threads": [a, b],
+        "rounds": rounds,
+        "wall_s_runs": {str(t): runs[t] for t in counts},
+        "us_per_particle_step": {},
+        "speedup_runs": ratios,
+        "speedup": statistics.median(ratios),
+    }
+
+
 def cmd_bench(args: argparse.Namespace) -> int:
     """``watersim bench``: time K steps of a dam break scaled to about N particles."""
     if args.case not in BENCH_CASES:
@@ -625,6 +667,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         raise CliError("--steps: must be at least 1 (and --warmup not negative)")
     if args.repeat < 1:
         raise CliError(f"--repeat: must be at least 1, got {args.repeat}")
+    compare = _thread_counts(args.compare_threads) if args.compare_threads is not None else None
     # what the process holds before the simulation exists (interpreter, NumPy, the module)
     baseline_rss = _current_rss_bytes()
     sim = _bench_simulation(args)
@@ -633,6 +676,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     status = "ok"
     error: dict[str, Any] | None = None
     wall = math.nan
+    comparison: dict[str, Any] | None = None
     # one wall time per run of K steps: on a shared host single runs scatter by 10-30 %
     walls: list[float] = []
     try:
@@ -643,6 +687,8 @@ def cmd_bench(args: argparse.Namespace) -> int:
             sim.step(args.steps)
             walls.append(time.perf_counter() - t0)
         wall = statistics.median(walls)
+        if compare is not None:
+            comparison = _compare_threads(sim, compare, args.steps, args.repeat)
     except InstabilityError as exc:
         status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
     n = sim.n_particles
@@ -701,6 +747,10 @@ def cmd_bench(args: argparse.Namespace) -> int:
         if threads in (1, 2) and us:
             result["speedup_vs_dsph"] = spec.dsph_us[threads - 1] / us
             result["meets_target"] = us <= spec.target_us[threads - 1]
+    if comparison is not None:
+        for t, runs in comparison["wall_s_runs"].items():
+            comparison["us_per_particle_step"][t] = 1e6 * statistics.median(runs) / (n * args.steps)
+        result["thread_comparison"] = comparison
     if error is not None:
         result["error"] = error
     if args.json:
@@ -846,6 +896,9 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--warmup", type=int, default=3, metavar="W", help="untimed steps (3)")
     bench.add_argument("--repeat", type=int, default=1, metavar="R",
                        help="time R runs of K steps in a row and report their median (1)")
+    bench.add_argument("--compare-threads", metavar="A,B", default=None,
+                       help="then R rounds of K steps on A threads and K on B threads in turn, "
+                            "and the median ratio of their times (thread_comparison)")
     bench.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     bench.add_argument("--json", action="store_true", help="print one JSON object")
     bench.set_defaults(func=cmd_bench)

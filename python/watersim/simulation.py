@@ -129,13 +129,22 @@ class Simulation:
         """(N,) original particle id of each storage slot."""
         return self._sim.ids
 
-    def step(self, n: int = 1) -> None:
+    def step(self, n: int = 1, threads: int | None = None) -> None:
         """Advance ``n`` time steps.
+
+        Args:
+            n: steps to take.
+            threads: run them on a pool of this many threads (built on first use, then kept)
+                instead of the global pool (``RAYON_NUM_THREADS``). The results do not depend
+                on it: for timing thread counts against each other in one process.
 
         Raises:
             InstabilityError: a stability monitor stopped the run.
+            ValueError: ``threads`` is not a positive integer.
         """
-        self._sim.step(n)
+        if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+            raise ValueError(f"threads: must be a positive integer, got {threads!r}")
+        self._sim.step(n, threads)
 
     def memory_bytes(self) -> int:
         """Bytes of the solver's own particle and cell arrays (capacity-based)."""

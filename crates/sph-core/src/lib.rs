@@ -16,6 +16,7 @@ pub mod physics;
 pub mod probes;
 pub mod scene;
 pub mod simulation;
+pub mod threads;
 
 pub use error::{Error, InstabilityKind, Result};
 pub use kernel::{CubicSpline, Kernel, KernelKind, WendlandC2};
@@ -24,6 +25,7 @@ pub use motion::{MotionLaw, Paddle, PaddleKind};
 pub use probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 pub use scene::{Damping, Diffusion, Integrator, Obstacle, Scene, Viscosity};
 pub use simulation::{Checkpoint, Interpolated, Params, Simulation, Solver};
+pub use threads::on_threads;
 
 use physics::{diff_code, visc_code, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR, VISC_LAMINAR_SPS};
 

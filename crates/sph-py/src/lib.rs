@@ -108,11 +108,16 @@ impl Simulation {
         self.inner.dt()
     }
 
-    /// Advances `n` steps (the GIL is released).
-    #[pyo3(signature = (n = 1))]
-    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
+    /// Advances `n` steps (the GIL is released): on rayon's global pool, or with `threads` on
+    /// a pool of that many threads (built once, then reused).
+    #[pyo3(signature = (n = 1, threads = None))]
+    fn step(&mut self, py: Python<'_>, n: u64, threads: Option<usize>) -> PyResult<()> {
         let inner = &mut self.inner;
-        py.detach(|| inner.step(n)).map_err(|e| to_py_err(py, e))
+        let result = match threads {
+            None => py.detach(|| inner.step(n)),
+            Some(t) => py.detach(|| sph_core::on_threads(t, || inner.step(n)).and_then(|r| r)),
+        };
+        result.map_err(|e| to_py_err(py, e))
     }
 
     /// Advances until `time >= until` [s] (the GIL is released).
