@@ -139,7 +139,8 @@ pub fn permute<T: bytemuck::Pod + Send + Sync>(
     put_moved(&mut data[range], buf, moved, |d, x| *d = x);
 }
 
-/// [`permute`] for vectors, one component at a time through the same 8-byte buffer.
+/// [`permute`] for vectors: whole vectors where `scratch` holds `dim` words per slot of
+/// `range`, else one component at a time through 8 bytes per slot.
 pub fn permute_vectors<V: Vector>(
     data: &mut [V],
     range: std::ops::Range<usize>,
@@ -148,8 +149,13 @@ pub fn permute_vectors<V: Vector>(
     scratch: &mut [u64],
 ) {
     let n = range.len();
-    let buf = &mut bytemuck::cast_slice_mut::<u64, Real>(scratch)[..n];
     let dim = std::mem::size_of::<V>() / std::mem::size_of::<Real>();
+    if scratch.len() >= n * dim {
+        // The whole vector per pass where the buffer holds it (the fluid's accelerations, which
+        // the fluid sort lends): `dim` times fewer fork-joins and passes over the vectors.
+        return permute(data, range, perm, moved, &mut scratch[..n * dim]);
+    }
+    let buf = &mut bytemuck::cast_slice_mut::<u64, Real>(scratch)[..n];
     for k in 0..dim {
         let src = &*data;
         gather_moved(buf, &perm[..n], moved, |old| src[old].get(k));
@@ -160,6 +166,25 @@ pub fn permute_vectors<V: Vector>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn vectors_permute_alike_through_a_small_and_a_large_buffer() {
+        use glam::DVec3;
+        let (start, n) = (5usize, 2 * PERMUTE_BLOCK + 17);
+        let data: Vec<DVec3> = (0..start + n).map(|i| DVec3::new(i as f64, -(i as f64), 0.5 * i as f64)).collect();
+        // reverse the first block, swap two slots of the last: the middle block stays
+        let mut perm: Vec<u32> = (start..start + n).map(|i| i as u32).collect();
+        perm[..PERMUTE_BLOCK].reverse();
+        perm.swap(n - 1, n - 3);
+        let mut moved = vec![false; n.div_ceil(PERMUTE_BLOCK)];
+        assert_eq!(mark_moved_blocks(&perm, start, &mut moved), 2);
+        let expect: Vec<DVec3> = (0..start).map(|i| data[i]).chain(perm.iter().map(|&old| data[old as usize])).collect();
+        for words in [n, 3 * n] {
+            let mut permuted = data.clone();
+            permute_vectors(&mut permuted, start..start + n, &perm, &moved, &mut vec![0u64; words]);
+            assert_eq!(permuted, expect, "{words} words of scratch");
+        }
+    }
 
     #[test]
     fn marks_exactly_the_blocks_a_permutation_changes() {
