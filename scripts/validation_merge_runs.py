@@ -26,7 +26,8 @@ for i, r in enumerate(runs):
 for key in sorted(set(new) - seen, key=lambda k: k[1]):
     same_case = [i for i, r in enumerate(runs) if r["case"] == key[0]]
     assert same_case, f"{key}: no run of this case in {path}"
-    at = max((i for i in same_case if float(runs[i]["resolution"]) < key[1]), default=same_case[0] - 1)
+    at = max((i for i in same_case if float(runs[i]["resolution"]) < key[1]),
+             default=same_case[0] - 1)
     runs.insert(at + 1, new[key])
     print(f"{key}: added, dp {new[key]['dp']:.6g}, particles {new[key]['n_particles']}, "
           f"cpu {new[key]['cpu_s']:.1f}, status {new[key]['status']}, errors {new[key]['errors']}")

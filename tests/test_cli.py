@@ -153,7 +153,8 @@ def test_bench_compare_threads_times_both_counts_in_turn() -> None:
     assert comparison["threads"] == [1, 2] and comparison["rounds"] == 3
     runs = comparison["wall_s_runs"]
     assert len(runs["1"]) == len(runs["2"]) == 3
-    assert comparison["speedup_runs"] == pytest.approx([a / b for a, b in zip(runs["1"], runs["2"])])
+    assert comparison["speedup_runs"] == pytest.approx(
+        [a / b for a, b in zip(runs["1"], runs["2"], strict=True)])
     assert comparison["speedup"] == sorted(comparison["speedup_runs"])[1]
     for t in ("1", "2"):
         assert comparison["us_per_particle_step"][t] == pytest.approx(

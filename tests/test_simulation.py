@@ -24,7 +24,8 @@ def test_fluid_pairs_are_the_pairs_within_the_support(small_dambreak: Simulation
     # every particle closer than the support, the particle itself (r = 0) not counted
     expected = int(np.count_nonzero(r2 < sim.params()["support"] ** 2)) - int(fluid.sum())
     assert sim.fluid_pairs() == expected > 0
-    assert sim.force_evaluations_per_step() == (2 if sim.scene["integrator"]["scheme"] == "symplectic" else 1)
+    symplectic = sim.scene["integrator"]["scheme"] == "symplectic"
+    assert sim.force_evaluations_per_step() == (2 if symplectic else 1)
 
 
 def test_arrays_have_the_contract_shapes_and_types(small_dambreak: Simulation) -> None:

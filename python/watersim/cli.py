@@ -621,13 +621,15 @@ def _thread_counts(text: str) -> tuple[int, int]:
     try:
         a, b = (int(part) for part in text.split(","))
     except ValueError:
-        raise CliError(f"--compare-threads: two thread counts A,B, e.g. 1,2; got {text!r}") from None
+        raise CliError(
+            f"--compare-threads: two thread counts A,B, e.g. 1,2; got {text!r}") from None
     if a < 1 or b < 1 or a == b:
         raise CliError(f"--compare-threads: two different counts of at least 1, got {text!r}")
     return a, b
 
 
-def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int, rounds: int) -> dict[str, Any]:
+def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int,
+                     rounds: int) -> dict[str, Any]:
     """Times ``rounds`` rounds of K steps on A threads and K steps on B threads, in turn on one
     simulation (the results do not depend on the thread count), each pool started and warmed by
     one untimed step first. On a shared host single runs scatter by 10-30 % from one minute to
@@ -647,11 +649,13 @@ def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int, round
             wall[t] = time.perf_counter() - t0
             runs[t].append(wall[t])
         ratios.append(wall[a] / wall[b])
+    n = sim.n_particles
     return {
         "threads": [a, b],
         "rounds": rounds,
         "wall_s_runs": {str(t): runs[t] for t in counts},
-        "us_per_particle_step": {},
+        "us_per_particle_step": {
+            str(t): 1e6 * statistics.median(runs[t]) / (n * steps) for t in counts},
         "speedup_runs": ratios,
         "speedup": statistics.median(ratios),
     }
@@ -748,8 +752,6 @@ def cmd_bench(args: argparse.Namespace) -> int:
             result["speedup_vs_dsph"] = spec.dsph_us[threads - 1] / us
             result["meets_target"] = us <= spec.target_us[threads - 1]
     if comparison is not None:
-        for t, runs in comparison["wall_s_runs"].items():
-            comparison["us_per_particle_step"][t] = 1e6 * statistics.median(runs) / (n * args.steps)
         result["thread_comparison"] = comparison
     if error is not None:
         result["error"] = error

@@ -142,7 +142,8 @@ class Simulation:
             InstabilityError: a stability monitor stopped the run.
             ValueError: ``threads`` is not a positive integer.
         """
-        if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+        positive = isinstance(threads, int) and not isinstance(threads, bool) and threads >= 1
+        if threads is not None and not positive:
             raise ValueError(f"threads: must be a positive integer, got {threads!r}")
         self._sim.step(n, threads)
 

@@ -1389,8 +1389,6 @@ mod batched_loop_tests {
         check::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_NONE>(&dambreak(2, none));
     }
 
-    /// The pair count against every pair tested, after steps that moved the particles since
-    /// the grid's last sort, and the evaluations per step of both integrators.
     #[test]
     fn the_monitor_names_the_lowest_id_among_bad_particles_in_any_chunk() {
         // 2D dam break of dp 0.005: 4,800 fluid particles, three of the monitor's chunks
@@ -1420,6 +1418,8 @@ mod batched_loop_tests {
         expect(&s, InstabilityKind::NonFinite, lowest);
     }
 
+    /// The pair count against every pair tested, after steps that moved the particles since
+    /// the grid's last sort, and the evaluations per step of both integrators.
     #[test]
     fn fluid_pair_count_is_every_pair_within_the_support() {
         for (dim, integrator, evaluations) in [(2, "symplectic", 2), (3, "verlet", 1)] {
