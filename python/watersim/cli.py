@@ -616,6 +616,13 @@ def _current_rss_bytes() -> int | None:
     return None  # pragma: no cover
 
 
+def _timed_steps(sim: Simulation, steps: int, threads: int | None = None) -> float:
+    """Wall time [s] of ``steps`` steps (on a pool of ``threads`` threads if given)."""
+    t0 = time.perf_counter()
+    sim.step(steps, threads=threads)
+    return time.perf_counter() - t0
+
+
 def _thread_counts(text: str) -> tuple[int, int]:
     """``--compare-threads A,B``: two different positive thread counts."""
     try:
@@ -644,9 +651,7 @@ def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int,
     for r in range(rounds):
         wall: dict[int, float] = {}
         for t in (a, b) if r % 2 == 0 else (b, a):
-            t0 = time.perf_counter()
-            sim.step(steps, threads=t)
-            wall[t] = time.perf_counter() - t0
+            wall[t] = _timed_steps(sim, steps, threads=t)
             runs[t].append(wall[t])
         ratios.append(wall[a] / wall[b])
     n = sim.n_particles
@@ -686,10 +691,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
     try:
         if args.warmup:
             sim.step(args.warmup)
-        for _ in range(args.repeat):
-            t0 = time.perf_counter()
-            sim.step(args.steps)
-            walls.append(time.perf_counter() - t0)
+        walls = [_timed_steps(sim, args.steps) for _ in range(args.repeat)]
         wall = statistics.median(walls)
         if compare is not None:
             comparison = _compare_threads(sim, compare, args.steps, args.repeat)
