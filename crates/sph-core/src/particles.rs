@@ -58,13 +58,6 @@ impl<D: Dim> Particles<D> {
     }
 }
 
-/// `dst.copy_from_slice(src)` split over the threads: a serial copy takes every cache line of
-/// `dst` into the calling thread's core, and the other cores fetch their part back from it.
-pub fn par_copy<T: Copy + Send + Sync>(dst: &mut [T], src: &[T]) {
-    use rayon::prelude::*;
-    dst.par_chunks_mut(PERMUTE_BLOCK).zip(src.par_chunks(PERMUTE_BLOCK)).for_each(|(d, s)| d.copy_from_slice(s));
-}
-
 /// Slots per block of a permutation's dirty map ([`mark_moved_blocks`]): small enough that
 /// a particle crossing into the next cell dirties little, large enough for a memcpy.
 pub const PERMUTE_BLOCK: usize = 128;

@@ -6,13 +6,16 @@
 
 use rayon::prelude::*;
 
+mod advance;
+use advance::Rule;
+
 use crate::error::{Error, InstabilityKind, Result};
 use crate::geometry;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
-use crate::particles::{mark_moved_blocks, par_copy, permute, permute_vectors, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
+use crate::particles::{mark_moved_blocks, permute, permute_vectors, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{
@@ -404,30 +407,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         n as Real * self.c.mass * self.c.gravity * self.scene.tank.min[D::DIM - 1]
     }
 
-    /// Freezes fluid particles that left the domain; errors past the scene's lost fraction.
-    fn exclude_escaped(&mut self) -> Result<()> {
+    /// Errors when more fluid particles left the domain (the sweep excludes them) than the
+    /// scene's lost fraction allows.
+    fn check_lost_fraction(&self) -> Result<()> {
         let fs = self.p.fluid_start();
-        let (lo, hi) = self.domain;
-        let p = &mut self.p;
-        let newly: usize = p.kind[fs..]
-            .par_iter_mut()
-            .zip(p.vel[fs..].par_iter_mut())
-            .zip(p.pos[fs..].par_iter())
-            .map(|((k, v), x)| {
-                let inside = (0..D::DIM).all(|a| x.get(a) >= lo.get(a) && x.get(a) <= hi.get(a));
-                if *k == KIND_FLUID && !inside && x.is_finite() {
-                    *k = KIND_EXCLUDED;
-                    *v = D::V::ZERO;
-                    1
-                } else {
-                    0
-                }
-            })
-            .sum();
-        if newly == 0 {
-            return Ok(());
-        }
-        self.n_excluded += newly;
         let limit = self.scene.lost_fraction_limit * self.p.n_fluid() as Real;
         if self.n_excluded as Real > limit {
             let first = (fs..self.p.len())
@@ -478,20 +461,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             ));
         }
         Ok(())
-    }
-
-    /// Velocity damping zone (see [`crate::scene::Damping`]).
-    fn damp(&mut self, dt: Real) {
-        let Some(d) = self.scene.damping else { return };
-        let fs = self.p.fluid_start();
-        let inv_len = 1.0 / (d.x_end - d.x_start);
-        let (pos, vel) = (&self.p.pos[fs..], &mut self.p.vel[fs..]);
-        vel.par_iter_mut().zip(pos.par_iter()).for_each(|(v, x)| {
-            let s = ((x.get(0) - d.x_start) * inv_len).clamp(0.0, 1.0);
-            if s > 0.0 {
-                *v = *v * (1.0 - dt * d.strength * s * s).max(0.0);
-            }
-        });
     }
 
     fn new_record(&self, g: &GaugeSpec) -> GaugeRecord {
@@ -812,24 +781,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         shifting_fields(&self.c, &self.kernel, &self.grid, fields, &mut shift.grad, &mut shift.div);
     }
 
-    /// Moves each fluid particle by its shift `-a_fs A h |u| dt grad C` (see
-    /// [`crate::scene::Shifting`]), `u` its velocity at the end of the step.
-    fn shift_positions(&mut self, dt: Real) {
-        let Some(shift) = &self.shift else { return };
-        let fs = self.p.fluid_start();
-        let (_, pos_f) = self.p.pos.split_at_mut(fs);
-        let vel_f = &self.p.vel[fs..];
-        let span = D::DIM as Real - shift.threshold;
-        pos_f.par_iter_mut().zip(vel_f.par_iter()).zip(shift.grad.par_iter().zip(shift.div.par_iter())).for_each(
-            |((x, v), (&grad, &div))| {
-                let surface = ((div - shift.threshold) / span).clamp(0.0, 1.0);
-                if surface > 0.0 {
-                    *x += grad * (-surface * shift.a_h * v.length() * dt);
-                }
-            },
-        );
-    }
-
     /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).
     fn time_step(&self, lim: StepLimits) -> Result<Real> {
         let dt_f = if lim.max_acc > 0.0 { (self.c.h / lim.max_acc).sqrt() } else { Real::INFINITY };
@@ -859,161 +810,54 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         }
     }
 
-    /// NaN/inf and density-band monitor over all particles; reports the lowest particle id.
-    fn check(&self) -> Result<()> {
+    /// The NaN or density-band monitor's error for the particle in `slot` (see `advance.rs`).
+    fn monitor_error(&self, slot: usize, kind: InstabilityKind) -> Error {
         let (lo, hi) = (self.c.rho0 * (1.0 - self.c.density_band), self.c.rho0 * (1.0 + self.c.density_band));
-        let p = &self.p;
-        let verdict = |i: usize| {
-            let finite = p.pos[i].is_finite() && p.vel[i].is_finite() && p.rho[i].is_finite();
-            if !finite {
-                Some((p.id[i], i, InstabilityKind::NonFinite))
-            } else if p.rho[i] < lo || p.rho[i] > hi {
-                Some((p.id[i], i, InstabilityKind::DensityOutOfRange))
-            } else {
-                None
-            }
+        let message = match kind {
+            InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
+            _ => format!(
+                "density {:.3} kg/m^3 outside [{lo:.3}, {hi:.3}] (rho0 -+ {:.2} %)",
+                self.p.rho[slot],
+                self.c.density_band * 100.0
+            ),
         };
-        // A branch-free test per chunk first, which vectorises; only a chunk that fails it is
-        // searched particle by particle (the per-particle search over every slot took 2 % of
-        // a 2D step).
-        const CHECK_CHUNK: usize = 2048;
-        let bad = p
-            .pos
-            .par_chunks(CHECK_CHUNK)
-            .zip(p.vel.par_chunks(CHECK_CHUNK))
-            .zip(p.rho.par_chunks(CHECK_CHUNK))
-            .enumerate()
-            .filter(|(_, ((x, v), r))| {
-                // NaN fails both density compares
-                !x.iter().zip(*v).zip(*r).fold(true, |ok, ((x, v), &r)| ok & x.is_finite() & v.is_finite() & (r >= lo) & (r <= hi))
-            })
-            .flat_map_iter(|(c, _)| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(p.len())).filter_map(verdict))
-            .min_by_key(|&(id, _, _)| id);
-        match bad {
-            None => Ok(()),
-            Some((_, i, kind)) => {
-                let message = match kind {
-                    InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
-                    _ => format!(
-                        "density {:.3} kg/m^3 outside [{lo:.3}, {hi:.3}] (rho0 -+ {:.2} %)",
-                        p.rho[i],
-                        self.c.density_band * 100.0
-                    ),
-                };
-                Err(self.instability(kind, Some(i), message))
-            }
-        }
+        self.instability(kind, Some(slot), message)
     }
 
     /// One time step.
     fn step_once(&mut self) -> Result<()> {
-        let fs = self.p.fluid_start();
-        let rho0 = self.c.rho0;
-        // Adami walls: densities come from the fluid at each force evaluation, not integrated
-        let walls_from_fluid = self.scene.boundary == Boundary::Adami;
-        match self.history {
+        let (dt, rule) = match self.history {
             History::Symplectic { .. } => {
-                // Predictor (Leimkuhler & Patrick; DualSPHysics form).
                 let lim = self.compute_forces();
                 let dt = self.time_step(lim)?;
-                let half = 0.5 * dt;
-                let History::Symplectic { vel0, rho0: rho_n } = &mut self.history else { unreachable!() };
-                par_copy(vel0, &self.p.vel);
-                par_copy(rho_n, &self.p.rho);
-                let p = &mut self.p;
-                p.rho.par_iter_mut().zip(p.drho.par_iter()).enumerate().for_each(|(i, (r, &d))| {
-                    if i < fs && walls_from_fluid {
-                        return;
-                    }
-                    *r += half * d;
-                    if i < fs {
-                        *r = r.max(rho0); // DBC: walls never suck fluid in (DualSPHysics)
-                    }
-                });
-                let (_, pos_f) = p.pos.split_at_mut(fs);
-                let (_, vel_f) = p.vel.split_at_mut(fs);
-                pos_f.par_iter_mut().zip(vel_f.par_iter_mut()).zip(p.acc.par_iter()).for_each(|((x, v), &a)| {
-                    *x += *v * half;
-                    *v += a * half;
-                });
-
-                // Corrector, with the paddle at mid-step.
-                self.move_boundaries(self.time + half);
+                self.sweep(Rule::Predictor, dt, false);
+                // the corrector's forces with the paddle at mid-step
+                self.move_boundaries(self.time + 0.5 * dt);
                 let _ = self.compute_forces();
                 self.compute_shifting();
-                let History::Symplectic { vel0, rho0: rho_n } = &self.history else { unreachable!() };
-                let p = &mut self.p;
-                p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_n.par_iter()).enumerate().for_each(
-                    |(i, ((r, &d), &rn))| {
-                        if i < fs && walls_from_fluid {
-                            return;
-                        }
-                        let eps = -d / *r * dt;
-                        *r = rn * (2.0 - eps) / (2.0 + eps);
-                        if i < fs {
-                            *r = r.max(rho0);
-                        }
-                    },
-                );
-                let (_, pos_f) = p.pos.split_at_mut(fs);
-                let (_, vel_f) = p.vel.split_at_mut(fs);
-                pos_f
-                    .par_iter_mut()
-                    .zip(vel_f.par_iter_mut())
-                    .zip(p.acc.par_iter())
-                    .zip(vel0[fs..].par_iter())
-                    .for_each(|(((x, v), &a), &v0)| {
-                        // x1 = x0 + (v0 + v1) dt/2 = x_half + v1 dt/2: no copy of x0 is kept
-                        let v1 = v0 + a * dt;
-                        *x += v1 * half;
-                        *v = v1;
-                    });
-                self.dt = dt;
+                (dt, Rule::Corrector)
             }
             History::Verlet { euler_every, .. } => {
                 let lim = self.compute_forces();
                 let dt = self.time_step(lim)?;
                 self.compute_shifting();
-                // Euler on the first step (no history yet) and every `euler_every` steps.
-                let euler = self.steps.is_multiple_of(euler_every as u64);
-                let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history else { unreachable!() };
-                let p = &mut self.p;
-                p.rho.par_iter_mut().zip(p.drho.par_iter()).zip(rho_prev.par_iter_mut()).enumerate().for_each(
-                    |(i, ((r, &d), rp))| {
-                        if i < fs && walls_from_fluid {
-                            return;
-                        }
-                        let mut next = if euler { *r + dt * d } else { *rp + 2.0 * dt * d };
-                        if i < fs {
-                            next = next.max(rho0);
-                        }
-                        *rp = *r;
-                        *r = next;
-                    },
-                );
-                let (_, pos_f) = p.pos.split_at_mut(fs);
-                let (_, vel_f) = p.vel.split_at_mut(fs);
-                pos_f
-                    .par_iter_mut()
-                    .zip(vel_f.par_iter_mut())
-                    .zip(p.acc.par_iter())
-                    .zip(vel_prev[fs..].par_iter_mut())
-                    .for_each(|(((x, v), &a), vp)| {
-                        *x += *v * dt + a * (0.5 * dt * dt);
-                        let next = if euler { *v + a * dt } else { *vp + a * (2.0 * dt) };
-                        *vp = *v;
-                        *v = next;
-                    });
-                self.dt = dt;
+                // Euler on the first step (no history yet) and every `euler_every` steps
+                (dt, Rule::Verlet { euler: self.steps.is_multiple_of(euler_every as u64) })
             }
-        }
-        self.shift_positions(self.dt);
-        self.damp(self.dt);
-        self.time += self.dt;
+        };
+        self.dt = dt;
+        self.time += dt;
         self.steps += 1;
+        // the paddle at the step's end before the sweep's monitor tests its slots
         self.move_boundaries(self.time);
-        self.check()?;
-        self.exclude_escaped()?;
+        let found = self.sweep(rule, dt, true);
+        self.n_excluded += found.newly_excluded;
+        if let Some((_, slot, kind)) = found.bad {
+            return Err(self.monitor_error(slot, kind));
+        }
+        if found.newly_excluded > 0 {
+            self.check_lost_fraction()?;
+        }
         self.check_energy()?;
         if !self.gauges.is_empty() {
             self.sample_gauges();
@@ -1391,31 +1235,30 @@ mod batched_loop_tests {
 
     #[test]
     fn the_monitor_names_the_lowest_id_among_bad_particles_in_any_chunk() {
-        // 2D dam break of dp 0.005: 4,800 fluid particles, three of the monitor's chunks
+        type S = Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>;
+        // 2D dam break of dp 0.005: 4,800 fluid particles, three of the sweep's chunks
         let json = r#"{"dim": 2, "dp": 0.005, "tank": {"min": [0, 0], "max": [1.0, 0.6]}, "fluid": [{"min": [0, 0], "max": [0.3, 0.4]}]}"#;
-        let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(json).expect("scene")).expect("solver");
-        assert!(s.check().is_ok());
+        let mut s = S::new(Scene::from_json(json).expect("scene")).expect("solver");
+        // a sweep over no time is the monitor alone: nothing moves, every slot is tested
+        let monitor = |s: &mut S| s.sweep(Rule::Verlet { euler: true }, 0.0, true).bad.map(|(id, _, kind)| (kind, id));
+        assert_eq!(monitor(&mut s), None);
         let n = s.p.len();
         assert!(n > 2 * 2048, "{n} particles");
-        let slot_of = |s: &Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>, id: u32| s.p.id.iter().position(|&i| i == id).unwrap();
-        let expect = |s: &Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>, kind: InstabilityKind, id: u32| match s.check() {
-            Err(Error::Instability { kind: k, particle, .. }) => assert_eq!((k, particle), (kind, id)),
-            other => panic!("expected {kind:?} of particle {id}, got {other:?}"),
-        };
+        let slot_of = |s: &S, id: u32| s.p.id.iter().position(|&i| i == id).unwrap();
         // a density out of band on the highest id, then a NaN on a lower id in another chunk,
         // then an infinity on the lowest id: the lowest bad id is reported wherever its slot is
         let (lowest, highest) = (s.p.id.iter().copied().min().unwrap(), s.p.id.iter().copied().max().unwrap());
         let high = slot_of(&s, highest);
         s.p.rho[high] = s.c.rho0 * (1.0 + 2.0 * s.c.density_band);
-        expect(&s, InstabilityKind::DensityOutOfRange, highest);
+        assert_eq!(monitor(&mut s), Some((InstabilityKind::DensityOutOfRange, highest)));
         let other = if high < n / 2 { n - 10 } else { 10 };
         let id_other = s.p.id[other];
         assert!(id_other != lowest && id_other != highest);
         s.p.pos[other].x = Real::NAN;
-        expect(&s, InstabilityKind::NonFinite, id_other);
+        assert_eq!(monitor(&mut s), Some((InstabilityKind::NonFinite, id_other)));
         let low = slot_of(&s, lowest);
         s.p.vel[low].y = Real::INFINITY;
-        expect(&s, InstabilityKind::NonFinite, lowest);
+        assert_eq!(monitor(&mut s), Some((InstabilityKind::NonFinite, lowest)));
     }
 
     /// The pair count against every pair tested, after steps that moved the particles since
