@@ -23,6 +23,19 @@ pub const GROUP_FLUID: usize = 2;
 /// Largest stencil reach the grid accepts.
 pub const MAX_REACH: usize = 3;
 
+/// Cells of a stencil row out of reach below and above the particle's cell, for reach `r`:
+/// `near2` (see [`CellGrid::stencil_rows`]) holds the squared distances along x, `d2` the row's
+/// distance across. Inlined, so a constant `r` unrolls the loop.
+#[inline(always)]
+fn out_of_reach(d2: Real, near2: &[Real; 2 * MAX_REACH + 1], limit: Real, r: usize) -> (usize, usize) {
+    let (mut below, mut above) = (0, 0);
+    for o in 1..=r {
+        below += (d2 + near2[r - o] >= limit) as usize;
+        above += (d2 + near2[r + o] >= limit) as usize;
+    }
+    (below, above)
+}
+
 /// The rows of one stencil: `(first, end)` cell ranges, `n` of them.
 pub struct StencilRows {
     pub n: usize,
@@ -232,22 +245,23 @@ impl<D: Dim> CellGrid<D> {
         rows.n = 0;
         for z in z_lo..=z_hi {
             let dz2 = if D::DIM == 3 { near2[2][z + r - c[2]] } else { 0.0 };
+            // Without branches on the trimming (which cells a row keeps depends on where `p`
+            // sits in its cell, so those branches went either way): the cells out of reach
+            // on either side are counted, not searched for. They are the row's outer ends,
+            // since `near2` grows away from `p`'s cell, so a count gives where the row starts
+            // or ends. A row out of reach is written and not counted.
             for y in y_lo..=y_hi {
                 let d2 = dz2 + near2[1][y + r - c[1]];
-                if d2 >= limit {
-                    continue;
-                }
-                let mut lo = x_lo;
-                while lo < c[0] && d2 + near2[0][lo + r - c[0]] >= limit {
-                    lo += 1;
-                }
-                let mut hi = x_hi;
-                while hi > c[0] && d2 + near2[0][hi + r - c[0]] >= limit {
-                    hi -= 1;
-                }
+                // the solver's reach unrolled, any other counted in a loop
+                let (below, above) = match r {
+                    2 => out_of_reach(d2, &near2[0], limit, 2),
+                    _ => out_of_reach(d2, &near2[0], limit, r),
+                };
+                // cells past the grid's edge count as trimmed too: the span cuts them anyway
+                let (lo, hi) = ((c[0] + below).saturating_sub(r).max(x_lo), (c[0] + r - above).min(x_hi));
                 let row = self.dims[0] * (y + self.dims[1] * z);
                 rows.cells[rows.n] = ((row + lo) as u32, (row + hi + 1) as u32);
-                rows.n += 1;
+                rows.n += (d2 < limit) as usize;
             }
         }
     }
