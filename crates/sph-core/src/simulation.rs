@@ -812,7 +812,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
 
     /// The NaN or density-band monitor's error for the particle in `slot` (see `advance.rs`).
     fn monitor_error(&self, slot: usize, kind: InstabilityKind) -> Error {
-        let (lo, hi) = (self.c.rho0 * (1.0 - self.c.density_band), self.c.rho0 * (1.0 + self.c.density_band));
+        let (lo, hi) = self.c.density_limits();
         let message = match kind {
             InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
             _ => format!(

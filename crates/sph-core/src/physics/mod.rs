@@ -75,12 +75,18 @@ pub struct Constants {
     /// `1 / rho0`.
     pub inv_rho0: Real,
     pub cfl: Real,
+    /// Relative half-width of the densities the monitor accepts ([`Constants::density_limits`]).
     pub density_band: Real,
     /// The batched force loop forms its pair terms in f32 (`ForcePrecision::F32`).
     pub pair_f32: bool,
 }
 
 impl Constants {
+    /// The densities the monitor accepts: `rho0 (1 -+ density_band)`.
+    pub fn density_limits(&self) -> (Real, Real) {
+        (self.rho0 * (1.0 - self.density_band), self.rho0 * (1.0 + self.density_band))
+    }
+
     pub fn new(scene: &Scene) -> Self {
         let dim = scene.dim;
         let h = scene.h();

@@ -70,7 +70,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         // Adami walls: densities come from the fluid at each force evaluation, not integrated;
         // DBC walls never go below rho0, so that they never suck fluid in (DualSPHysics)
         let wall_floor = (self.scene.boundary == Boundary::Dbc).then_some(self.c.rho0);
-        let band = (self.c.rho0 * (1.0 - self.c.density_band), self.c.rho0 * (1.0 + self.c.density_band));
+        let band = self.c.density_limits();
         let domain = self.domain;
         let shift = if last { self.shift.as_ref() } else { None };
         let damping = if last { self.scene.damping } else { None };
