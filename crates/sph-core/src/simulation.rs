@@ -647,7 +647,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     /// the time per pair next to the time per particle). A diagnostic, not for every step: it
     /// sorts a copy of the positions into a copy of the grid (the solver's own grid was sorted
     /// at the last force evaluation, before the positions moved) and holds, while it runs, 9
-    /// bytes per particle, a copy of the positions and a copy of the cell starts.
+    /// bytes per particle, a copy of the positions and a copy of the grid (cell starts, and 4
+    /// to 6 bytes per particle: the cell of each slot and the movers' scratch).
     pub fn fluid_pair_count(&self) -> u64 {
         let mut grid = self.grid.clone();
         let n = self.p.len();
