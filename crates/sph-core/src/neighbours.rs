@@ -138,6 +138,13 @@ impl<D: Dim> CellGrid<D> {
         self.bands[g] = None;
     }
 
+    /// Frees the cell of each slot that group `g` keeps for its next sort (4 bytes a particle),
+    /// for a group that is not sorted again: the fixed walls. A later sort of it sorts every
+    /// particle and keeps them again.
+    pub fn forget_slot_cells(&mut self, g: usize) {
+        self.cells[g] = Vec::new();
+    }
+
     /// Whether group `g` has cell starts (see [`CellGrid::release_group`]).
     #[inline(always)]
     pub fn has_group(&self, g: usize) -> bool {
@@ -523,6 +530,25 @@ mod tests {
         let mut near = Vec::new();
         grid.for_each_near(GROUP_MOVING, pts[0], |b| near.push(b));
         assert!(grid.has_group(GROUP_MOVING) && near.len() == 2, "{near:?}");
+    }
+
+    #[test]
+    fn a_group_whose_slot_cells_were_forgotten_sorts_in_full() {
+        let mut pts: Vec<DVec2> = (0..100).map(|i| DVec2::new(0.05 + 0.009 * i as f64, 0.3)).collect();
+        let mut grid = CellGrid::<Dim2>::new(DVec2::ZERO, DVec2::ONE, 0.1, 2);
+        let (mut perm, mut keys) = (vec![0u32; 100], vec![0u32; 100]);
+        grid.sort_group(GROUP_FIXED, 0..100, &pts, &mut perm, &mut keys);
+        let bytes = grid.memory_bytes();
+        grid.forget_slot_cells(GROUP_FIXED);
+        assert_eq!(grid.memory_bytes(), bytes - 100 * 4);
+        pts[3].x += 0.3;
+        grid.sort_group(GROUP_FIXED, 0..100, &pts, &mut perm, &mut keys);
+        let mut fresh = CellGrid::<Dim2>::new(DVec2::ZERO, DVec2::ONE, 0.1, 2);
+        let mut fresh_perm = vec![0u32; 100];
+        fresh.sort_group(GROUP_FIXED, 0..100, &pts, &mut fresh_perm, &mut keys);
+        assert_eq!(perm, fresh_perm);
+        assert_eq!(grid.starts[GROUP_FIXED], fresh.starts[GROUP_FIXED]);
+        assert_eq!(grid.cells[GROUP_FIXED], fresh.cells[GROUP_FIXED]);
     }
 
     #[test]

@@ -325,6 +325,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         solver.move_boundaries(0.0);
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
+        solver.grid.forget_slot_cells(GROUP_FIXED);
         solver.sort_group(GROUP_MOVING);
         solver.sort_group(GROUP_FLUID);
         // a group without particles needs no cell starts (the groups' sizes never change)
@@ -1112,6 +1113,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.gauges = c.gauges.clone();
         // The saved order is already sorted: the stable sort keeps it and rebuilds the cells.
         self.sort_group(GROUP_FIXED);
+        self.grid.forget_slot_cells(GROUP_FIXED);
         self.sort_group(GROUP_MOVING);
         self.sort_group(GROUP_FLUID);
         Ok(())
