@@ -1,5 +1,7 @@
-//! Cell-linked list built by a stable counting sort. Cells have side `support / reach` and a
-//! particle's neighbours lie within `reach` cells along each axis: `reach = 1` is the classic
+//! Cell-linked list built by a stable counting sort, or, when few particles changed cell since
+//! the last sort, by merging those few into the rest (the same order). Cells have side
+//! `support / reach` and a particle's neighbours lie within `reach` cells along each axis:
+//! `reach = 1` is the classic
 //! `2h` cell with a 3^dim stencil; `reach = 2` (the solver's choice) checks `(5/6)^dim` as many
 //! candidates (42 % fewer in 3D) for 25 rows instead of 9.
 //!
