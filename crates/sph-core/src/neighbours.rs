@@ -172,7 +172,7 @@ impl<D: Dim> CellGrid<D> {
         unsafe { c.to_int_unchecked::<i32>() as u32 }
     }
 
-    /// [`CellGrid::cell_of`] in 32-bit integers, which the sort's key pass vectorises.
+    /// The cell of `p` (x fastest), in 32-bit integers, which the sort's key pass vectorises.
     #[inline(always)]
     fn cell_key(&self, p: D::V) -> u32 {
         let mut key = 0;
@@ -189,12 +189,6 @@ impl<D: Dim> CellGrid<D> {
             *ck = self.coord(p, k);
         }
         c
-    }
-
-    #[inline(always)]
-    pub fn cell_of(&self, p: D::V) -> usize {
-        let c = self.coords(p);
-        c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
     }
 
     /// Sorts group `g`, occupying `range` of the particle arrays, by cell. Writes into `perm`
@@ -216,8 +210,9 @@ impl<D: Dim> CellGrid<D> {
             self.starts[g].resize(n_cells + 1, 0);
             self.bands[g] = None;
         }
-        // the last sort's cells are this one's reference only for the same slots
-        let same_slots = matches!(self.bands[g], Some(b) if b.first == first && b.end == end) && self.cells[g].len() == n;
+        // the last sort's band and cells describe these slots only if it sorted the same range
+        let last_band = self.bands[g].filter(|b| b.first == first && b.end == end);
+        let same_slots = last_band.is_some() && self.cells[g].len() == n;
         let this = &*self;
         let last = &this.cells[g][..if same_slots { n } else { 0 }];
         let (k_lo, k_hi, movers) = keys
@@ -259,9 +254,9 @@ impl<D: Dim> CellGrid<D> {
         // the last sort left them. Most of a flume's cells are air (the grid reaches a tank's
         // height above the tank): the moving paddle's few particles sorted through every cell
         // of the grid, twice per Symplectic step, before.
-        let (lo, hi) = match self.bands[g] {
-            Some(b) if b.first == first && b.end == end => (b.lo.min(k_lo), b.hi.max(k_hi)),
-            _ => (0, n_cells - 1),
+        let (lo, hi) = match last_band {
+            Some(b) => (b.lo.min(k_lo), b.hi.max(k_hi)),
+            None => (0, n_cells - 1),
         };
         let starts = &mut self.starts[g];
         starts[lo] = first;
@@ -321,7 +316,7 @@ impl<D: Dim> CellGrid<D> {
         // and s is not among them, so it goes right before slot starts[k] (s below them) or
         // starts[k + 1] (s above).
         let slot_of = |e: u64| (e & 0xffff_ffff) as usize;
-        let cell_of = |e: u64| (e >> 32) as usize;
+        let cell_in = |e: u64| (e >> 32) as usize;
         let (mut out, mut next, mut left) = (0, 0, departures.iter().map(|&e| slot_of(e)).peekable());
         let mut copy_stayers = |upto: usize, out: &mut usize, perm: &mut [u32], cells: &mut [u32]| {
             while next < upto {
@@ -339,7 +334,7 @@ impl<D: Dim> CellGrid<D> {
             }
         };
         for &e in arrivals.iter() {
-            let (k, s) = (cell_of(e), slot_of(e));
+            let (k, s) = (cell_in(e), slot_of(e));
             let (a, b) = ((starts[k] - first) as usize, (starts[k + 1] - first) as usize);
             copy_stayers(if s < a { a } else { b }, &mut out, perm, cells);
             perm[out] = first + s as u32;
@@ -351,23 +346,26 @@ impl<D: Dim> CellGrid<D> {
 
         // A particle that left cell o no longer counts below the cells above o; one that entered
         // cell k now does. Between two such events every start moves by the same amount.
+        // the cell of the next departure or arrival not yet counted (usize::MAX: none left)
+        let next_event = |d: usize, a: usize| {
+            let cell = |list: &[u64], i: usize| list.get(i).map_or(usize::MAX, |&e| cell_in(e));
+            cell(departures, d).min(cell(arrivals, a))
+        };
         let (mut d, mut a, mut shift) = (0, 0, 0i64);
         loop {
-            let next_d = departures.get(d).map_or(usize::MAX, |&e| cell_of(e));
-            let next_a = arrivals.get(a).map_or(usize::MAX, |&e| cell_of(e));
-            let cell = next_d.min(next_a);
+            let cell = next_event(d, a);
             if cell == usize::MAX {
                 break;
             }
-            while departures.get(d).is_some_and(|&e| cell_of(e) == cell) {
+            while departures.get(d).is_some_and(|&e| cell_in(e) == cell) {
                 shift -= 1;
                 d += 1;
             }
-            while arrivals.get(a).is_some_and(|&e| cell_of(e) == cell) {
+            while arrivals.get(a).is_some_and(|&e| cell_in(e) == cell) {
                 shift += 1;
                 a += 1;
             }
-            let upto = departures.get(d).map_or(usize::MAX, |&e| cell_of(e)).min(arrivals.get(a).map_or(usize::MAX, |&e| cell_of(e)));
+            let upto = next_event(d, a);
             if shift != 0 {
                 // all movers are counted once the last event is passed, so `upto` is finite here
                 starts[cell + 1..=upto].iter_mut().for_each(|s| *s = (*s as i64 + shift) as u32);
@@ -634,8 +632,8 @@ mod tests {
             for &(i, dx, dy) in moves {
                 pts[offset + i % n] += DVec2::new(dx, dy);
             }
-            let before: Vec<usize> = pts[range.clone()].iter().map(|&p| grid.cell_of(p)).collect();
-            let movers = before.iter().zip(&grid.cells[GROUP_MOVING]).filter(|(&k, &l)| k as u32 != l).count();
+            let before: Vec<u32> = pts[range.clone()].iter().map(|&p| grid.cell_key(p)).collect();
+            let movers = before.iter().zip(&grid.cells[GROUP_MOVING]).filter(|(&k, &l)| k != l).count();
             merged += (round > 0 && movers <= n / MOVER_SHARE) as usize;
             grid.sort_group(GROUP_MOVING, range.clone(), &pts, &mut perm, &mut keys);
             let mut fresh = new_grid();
