@@ -15,7 +15,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
-use crate::particles::{mark_moved_blocks, permute, permute_vectors, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
+use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{
@@ -157,6 +157,16 @@ enum History<D: Dim> {
     Verlet { vel_prev: Vec<D::V>, rho_prev: Vec<Real>, euler_every: u32 },
 }
 
+impl<D: Dim> History<D> {
+    /// The history's velocity and density arrays, whichever the scheme.
+    fn arrays_mut(&mut self) -> (&mut Vec<D::V>, &mut Vec<Real>) {
+        match self {
+            History::Symplectic { vel0, rho0 } => (vel0, rho0),
+            History::Verlet { vel_prev, rho_prev, .. } => (vel_prev, rho_prev),
+        }
+    }
+}
+
 /// Particle shifting's per-fluid-particle fields (see [`crate::scene::Shifting`]), computed
 /// after the step's last force evaluation (no cell sort comes between them and their use).
 #[derive(Debug, Clone)]
@@ -172,9 +182,12 @@ struct ShiftState<D: Dim> {
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     perm: Vec<u32>,
-    /// One flag per [`PERMUTE_BLOCK`] slots: whether the last sort moved a particle there.
-    moved: Vec<bool>,
-    /// Gather buffer of `permute`, shared by all arrays (see there). Empty when the fluid
+    /// One entry per [`PERMUTE_BLOCK`] slots: the block's rank among those the last sort moved
+    /// a particle in, or `NOT_MOVED` (see `mark_moved_blocks`).
+    ranks: Vec<u32>,
+    /// The blocks the last sort moved a particle in.
+    moved: Vec<u32>,
+    /// Gather buffer of `permute_carried`, shared by all arrays (see there). Empty when the fluid
     /// accelerations are large enough to serve instead (`Solver::sort_group`).
     gather: Vec<u64>,
 }
@@ -288,7 +301,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let dt_floor = 1e-6 * c.h / c.c0;
         // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
-        let scratch = Scratch { perm: vec![0; n], gather, moved: vec![false; n.div_ceil(PERMUTE_BLOCK)] };
+        let blocks = n.div_ceil(PERMUTE_BLOCK);
+        let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
         let mut solver = Self {
             scene,
             c,
@@ -701,7 +715,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         if range.is_empty() {
             return;
         }
-        let Scratch { perm, gather, moved } = &mut self.scratch;
+        let Scratch { perm, gather, ranks, moved } = &mut self.scratch;
         let Particles { pos, vel, rho, id, kind, acc, .. } = &mut self.p;
         // The gather buffer: the fluid accelerations where they are large enough (8 bytes a
         // particle less to hold). They are dead here: every sort comes right before a force
@@ -712,25 +726,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let keys = bytemuck::cast_slice_mut::<u64, u32>(gather);
         self.grid.sort_group(g, range.clone(), pos, perm, keys);
         let perm = &*perm;
-        if mark_moved_blocks(perm, range.start, moved) == 0 {
+        if mark_moved_blocks(perm, range.start, ranks, moved) == 0 {
             return;
         }
-        let moved = &moved[..];
-        permute_vectors(pos, range.clone(), perm, moved, gather);
-        permute_vectors(vel, range.clone(), perm, moved, gather);
-        permute(rho, range.clone(), perm, moved, gather);
-        permute(id, range.clone(), perm, moved, gather);
-        permute(kind, range.clone(), perm, moved, gather);
-        match &mut self.history {
-            History::Symplectic { vel0, rho0 } => {
-                permute_vectors(vel0, range.clone(), perm, moved, gather);
-                permute(rho0, range.clone(), perm, moved, gather);
-            }
-            History::Verlet { vel_prev, rho_prev, .. } => {
-                permute_vectors(vel_prev, range.clone(), perm, moved, gather);
-                permute(rho_prev, range.clone(), perm, moved, gather);
-            }
-        }
+        let (hist_v, hist_r) = self.history.arrays_mut();
+        let arrays = Carried { vectors: [pos, vel, hist_v], reals: [rho, hist_r], id, kind };
+        permute_carried(arrays, range, perm, ranks, moved, gather);
     }
 
     /// The particle arrays (storage order).
@@ -966,7 +967,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
         };
         let s = &self.scratch;
-        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8 + s.moved.capacity();
+        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8 + (s.ranks.capacity() + s.moved.capacity()) * 4;
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()

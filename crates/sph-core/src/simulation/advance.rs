@@ -13,7 +13,7 @@
 
 use rayon::prelude::*;
 
-use super::{History, ShiftState, Solver};
+use super::{ShiftState, Solver};
 use crate::error::InstabilityKind;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -76,10 +76,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let damping = if last { self.scene.damping } else { None };
         let p = &mut self.p;
         let (acc, drho, ids) = (&p.acc[..], &p.drho[..], &p.id[..]);
-        let (hist_v, hist_r) = match &mut self.history {
-            History::Symplectic { vel0, rho0 } => (vel0, rho0),
-            History::Verlet { vel_prev, rho_prev, .. } => (vel_prev, rho_prev),
-        };
+        let (hist_v, hist_r) = self.history.arrays_mut();
         p.pos
             .par_chunks_mut(SWEEP_CHUNK)
             .zip(p.vel.par_chunks_mut(SWEEP_CHUNK))
