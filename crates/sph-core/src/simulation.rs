@@ -769,12 +769,19 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let p = &mut self.p;
         let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, fluid_start: fs };
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
+        let (kernel, grid) = (&self.kernel, &self.grid);
+        let mut fluid = || fluid_forces::<D, K, VISC, DIFF>(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
         match self.scene.boundary {
-            Boundary::Dbc => boundary_density_rate(&c, &self.kernel, &self.grid, fields, drho_walls),
+            // The walls' continuity and the fluid's forces read the same fields and write apart:
+            // one fork-join for both, so that the threads wait for each other once, not twice
+            // (a thread the host stalls holds up every join; docs/benchmarks.md, Session 15).
+            Boundary::Dbc => rayon::join(|| boundary_density_rate(&c, kernel, grid, fields, drho_walls), fluid).1,
             // densities set above; the integrator leaves them alone
-            Boundary::Adami => drho_walls.fill(0.0),
+            Boundary::Adami => {
+                drho_walls.fill(0.0);
+                fluid()
+            }
         }
-        fluid_forces::<D, K, VISC, DIFF>(&c, &self.kernel, &self.grid, fields, &mut p.acc, drho_fluid)
     }
 
     /// Particle shifting's fields from the current (sorted) state; nothing without shifting.
