@@ -125,7 +125,7 @@ fn put_moved<T: Send, B: Copy + Sync>(data: &mut [T], buf: &[B], ranks: &[u32], 
 /// one 8-byte-per-particle buffer serves every array (reinterpreted as `T`), so sorting costs
 /// 8 bytes per particle rather than one vector per type. `T` must be at most 8 bytes wide;
 /// vectors go through [`permute_vectors`].
-pub fn permute<T: bytemuck::Pod + Send + Sync>(
+fn permute<T: bytemuck::Pod + Send + Sync>(
     data: &mut [T],
     range: std::ops::Range<usize>,
     perm: &[u32],
@@ -141,7 +141,7 @@ pub fn permute<T: bytemuck::Pod + Send + Sync>(
 
 /// [`permute`] for vectors: whole vectors where `scratch` holds `dim` words per slot of
 /// `range`, else one component at a time through 8 bytes per slot.
-pub fn permute_vectors<V: Vector>(
+fn permute_vectors<V: Vector>(
     data: &mut [V],
     range: std::ops::Range<usize>,
     perm: &[u32],
@@ -161,6 +161,11 @@ pub fn permute_vectors<V: Vector>(
         gather_moved(buf, &perm[..n], ranks, |old| src[old].get(k));
         put_moved(&mut data[range.clone()], buf, ranks, |v, x| v.set(k, x));
     }
+}
+
+/// `dst[s] = src[olds[s]]`: one block's slots of one array, gathered into its record.
+fn gather_block<T: Copy>(dst: &mut [T], olds: &[u32], src: &[T]) {
+    dst.iter_mut().zip(olds).for_each(|(d, &old)| *d = src[old as usize]);
 }
 
 /// Every per-particle array a cell sort carries along, for [`permute_carried`]: position,
@@ -235,27 +240,20 @@ pub fn permute_carried<V: Vector>(
         let (is, ks) = rest.split_at_mut(rec.kind - rec.id);
         let vs = bytemuck::cast_slice_mut::<u64, V>(vs);
         let rs = bytemuck::cast_slice_mut::<u64, Real>(rs);
-        for (dst, src) in vs.chunks_mut(b).zip(vectors) {
-            dst.iter_mut().zip(olds).for_each(|(d, &old)| *d = src[old as usize]);
-        }
-        for (dst, src) in rs.chunks_mut(b).zip(reals) {
-            dst.iter_mut().zip(olds).for_each(|(d, &old)| *d = src[old as usize]);
-        }
-        let is = bytemuck::cast_slice_mut::<u64, u32>(is);
-        is.iter_mut().zip(olds).for_each(|(d, &old)| *d = id[old as usize]);
-        let ks = bytemuck::cast_slice_mut::<u64, u8>(ks);
-        ks.iter_mut().zip(olds).for_each(|(d, &old)| *d = kind[old as usize]);
+        vs.chunks_mut(b).zip(vectors).for_each(|(dst, src)| gather_block(dst, olds, src));
+        rs.chunks_mut(b).zip(reals).for_each(|(dst, src)| gather_block(dst, olds, src));
+        gather_block(bytemuck::cast_slice_mut(is), olds, id);
+        gather_block(bytemuck::cast_slice_mut(ks), olds, kind);
     });
     let records = &*records;
-    let r = range;
     (
-        pos[r.clone()].par_chunks_mut(b),
-        vel[r.clone()].par_chunks_mut(b),
-        hist_v[r.clone()].par_chunks_mut(b),
-        rho[r.clone()].par_chunks_mut(b),
-        hist_r[r.clone()].par_chunks_mut(b),
-        id[r.clone()].par_chunks_mut(b),
-        kind[r].par_chunks_mut(b),
+        pos[range.clone()].par_chunks_mut(b),
+        vel[range.clone()].par_chunks_mut(b),
+        hist_v[range.clone()].par_chunks_mut(b),
+        rho[range.clone()].par_chunks_mut(b),
+        hist_r[range.clone()].par_chunks_mut(b),
+        id[range.clone()].par_chunks_mut(b),
+        kind[range].par_chunks_mut(b),
         ranks.par_iter(),
     )
         .into_par_iter()
