@@ -16,6 +16,7 @@
 //! within `reach` cells: the search stays exact, it only gets slower for particles far outside.
 
 use crate::math::{Dim, Real, Vector};
+use crate::threads::{for_each_chunk, Chunks};
 
 pub const GROUPS: usize = 3;
 pub const GROUP_FIXED: usize = 0;
@@ -201,7 +202,6 @@ impl<D: Dim> CellGrid<D> {
     /// an eighth did, only they are sorted and merged into the others ([`CellGrid::resort_movers`]),
     /// with the same result as the counting sort of all of them.
     pub fn sort_group(&mut self, g: usize, range: std::ops::Range<usize>, pos: &[D::V], perm: &mut [u32], keys: &mut [u32]) {
-        use rayon::prelude::*;
         let n = range.len();
         let keys = &mut keys[..n];
         let (first, end) = (range.start as u32, range.end as u32);
@@ -215,11 +215,16 @@ impl<D: Dim> CellGrid<D> {
         let same_slots = last_band.is_some() && self.cells[g].len() == n;
         let this = &*self;
         let last = &this.cells[g][..if same_slots { n } else { 0 }];
-        let (k_lo, k_hi, movers) = keys
-            .par_chunks_mut(KEY_CHUNK)
-            .zip(pos[range.clone()].par_chunks(KEY_CHUNK))
-            .enumerate()
-            .map(|(ci, (keys, pos))| {
+        let pos = &pos[range.clone()];
+        let key_chunks = Chunks::new(&mut *keys, KEY_CHUNK);
+        // each thread reads the positions it wrote in the last sweep (see for_each_chunk)
+        let (k_lo, k_hi, movers) = for_each_chunk(
+            key_chunks.count(),
+            || (u32::MAX, 0, 0),
+            |ci| {
+                // SAFETY: for_each_chunk hands each chunk index to one task
+                let keys = unsafe { key_chunks.get(ci) };
+                let pos = &pos[ci * KEY_CHUNK..ci * KEY_CHUNK + keys.len()];
                 let (mut lo, mut hi) = (u32::MAX, 0);
                 for (k, &p) in keys.iter_mut().zip(pos) {
                     *k = this.cell_key(p);
@@ -229,8 +234,9 @@ impl<D: Dim> CellGrid<D> {
                 let last = last.get(ci * KEY_CHUNK..ci * KEY_CHUNK + keys.len()).unwrap_or(&[]);
                 let moved = keys.iter().zip(last).map(|(k, l)| (k != l) as usize).sum::<usize>();
                 (lo, hi, moved)
-            })
-            .reduce(|| (u32::MAX, 0, 0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
+            },
+            |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2),
+        );
         if keys.is_empty() {
             self.starts[g].fill(first);
             self.bands[g] = None;

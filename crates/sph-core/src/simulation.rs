@@ -775,7 +775,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             // The walls' continuity and the fluid's forces read the same fields and write apart:
             // one fork-join for both, so that the threads wait for each other once, not twice
             // (a thread the host stalls holds up every join; docs/benchmarks.md, Session 15).
-            Boundary::Dbc => rayon::join(|| boundary_density_rate(&c, kernel, grid, fields, drho_walls), fluid).1,
+            // The fluid's loop runs first on this thread and the walls' waits for the other:
+            // the walls first on both held the second thread's start of the fluid's loop back
+            // by the walls' whole time (Session 16).
+            Boundary::Dbc => rayon::join(fluid, || boundary_density_rate(&c, kernel, grid, fields, drho_walls)).0,
             // densities set above; the integrator leaves them alone
             Boundary::Adami => {
                 drho_walls.fill(0.0);

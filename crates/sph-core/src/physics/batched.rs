@@ -17,8 +17,6 @@
 //! where they exist. Both variants do the same operations in the same order (Rust never fuses
 //! a multiply and an add on its own), so they give the same bits.
 
-use rayon::prelude::*;
-
 use super::eos::{pressure, sound_speed};
 use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
@@ -26,6 +24,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, StencilRows, GROUPS, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::particles::KIND_EXCLUDED;
+use crate::threads::{for_each_chunk, Chunks};
 
 /// Pairs per batch: large enough to amortise the loop set-up, small enough for L1. A multiple
 /// of every [`PairFloat::LANES`].
@@ -481,8 +480,10 @@ pub fn uses_avx2() -> bool {
     }
 }
 
-/// Fluid particles per parallel task (one scratch each).
-const CHUNK: usize = 256;
+/// Fluid particles per parallel task (one scratch each). The last chunks decide how long one
+/// thread waits for the other at the loop's end: 128 gave the 2D dam break 1.91 times one
+/// thread's speed on two against 1.88 with 256, and 64 slowed one thread (Session 16).
+const CHUNK: usize = 128;
 
 /// Batched [`super::forces::fluid_forces_scalar`] for the artificial and laminar viscosity
 /// models (the SPS closure stays on the scalar loop). Same contract: writes `acc` and `drho` of
@@ -530,13 +531,14 @@ fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF:
     drho: &mut [Real],
     avx2: bool,
 ) -> StepLimits {
-    acc.par_chunks_mut(CHUNK)
-        .zip(drho.par_chunks_mut(CHUNK))
-        .enumerate()
-        // one chunk per task (see super::NEIGHBOUR_TASK): with rayon's default split a thread
-        // could sit idle for a tenth of the loop on two threads, 2D dam break (Session 12)
-        .with_max_len(1)
-        .map(|(ci, (acc_c, drho_c))| {
+    // each thread keeps about the same fluid slots from step to step (see for_each_chunk)
+    let (acc, drho) = (Chunks::new(acc, CHUNK), Chunks::new(drho, CHUNK));
+    for_each_chunk(
+        acc.count(),
+        || StepLimits::NONE,
+        |ci| {
+            // SAFETY: for_each_chunk hands each chunk index to one task
+            let (acc_c, drho_c) = unsafe { (acc.get(ci), drho.get(ci)) };
             let first = ci * CHUNK;
             #[cfg(target_arch = "x86_64")]
             if avx2 {
@@ -545,8 +547,9 @@ fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF:
             }
             let _ = avx2;
             chunk_forces::<F, D, K, VISC, DIFF, T7, false>(c, kernel, grid, &f, first, acc_c, drho_c)
-        })
-        .reduce(|| StepLimits::NONE, StepLimits::merge)
+        },
+        StepLimits::merge,
+    )
 }
 
 /// The candidate scan with AVX2 intrinsics.

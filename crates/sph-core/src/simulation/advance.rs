@@ -11,14 +11,13 @@
 //! loops' bit for bit: each particle's arithmetic is unchanged, and the monitor reports the
 //! lowest bad id whichever chunk holds it.
 
-use rayon::prelude::*;
-
 use super::{ShiftState, Solver};
 use crate::error::InstabilityKind;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::particles::{KIND_EXCLUDED, KIND_FLUID};
 use crate::scene::{Boundary, Damping};
+use crate::threads::{for_each_chunk, Chunks};
 
 /// How a particle's density and motion advance in a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,15 +76,19 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let p = &mut self.p;
         let (acc, drho, ids) = (&p.acc[..], &p.drho[..], &p.id[..]);
         let (hist_v, hist_r) = self.history.arrays_mut();
-        p.pos
-            .par_chunks_mut(SWEEP_CHUNK)
-            .zip(p.vel.par_chunks_mut(SWEEP_CHUNK))
-            .zip(p.rho.par_chunks_mut(SWEEP_CHUNK))
-            .zip(p.kind.par_chunks_mut(SWEEP_CHUNK))
-            .zip(hist_v.par_chunks_mut(SWEEP_CHUNK))
-            .zip(hist_r.par_chunks_mut(SWEEP_CHUNK))
-            .enumerate()
-            .map(|(c, (((((pos, vel), rho), kind), hist_v), hist_r))| {
+        let n = p.pos.len();
+        assert!([p.vel.len(), p.rho.len(), p.kind.len(), hist_v.len(), hist_r.len()].iter().all(|&l| l == n), "a swept array's length differs");
+        let (pos, vel) = (Chunks::new(&mut p.pos, SWEEP_CHUNK), Chunks::new(&mut p.vel, SWEEP_CHUNK));
+        let (rho, kind) = (Chunks::new(&mut p.rho, SWEEP_CHUNK), Chunks::new(&mut p.kind, SWEEP_CHUNK));
+        let (hist_v, hist_r) = (Chunks::new(hist_v, SWEEP_CHUNK), Chunks::new(hist_r, SWEEP_CHUNK));
+        // each thread keeps about the same slots from one loop to the next (see for_each_chunk)
+        for_each_chunk(
+            pos.count(),
+            Findings::default,
+            |c| {
+                // SAFETY: for_each_chunk hands each chunk index to one task
+                let (pos, vel, rho, kind, hist_v, hist_r) =
+                    unsafe { (pos.get(c), vel.get(c), rho.get(c), kind.get(c), hist_v.get(c), hist_r.get(c)) };
                 let start = c * SWEEP_CHUNK;
                 let slots = start..start + pos.len();
                 if rule == Rule::Predictor {
@@ -116,8 +119,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                     bad: monitor(pos, vel, rho, &ids[slots.clone()], band).map(|(id, j, kind)| (id, start + j, kind)),
                     newly_excluded: exclude::<D>(&mut kind[walls..], &mut vel[walls..], &pos[walls..], domain),
                 }
-            })
-            .reduce(Findings::default, Findings::merge)
+            },
+            Findings::merge,
+        )
     }
 }
 
