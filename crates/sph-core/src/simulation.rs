@@ -17,6 +17,7 @@ use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
 use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
+use crate::threads::with_workers_polling;
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{
     boundary_density_rate, fluid_forces, shifting_fields, sps_stress, wall_density_from_fluid, Fields, StepLimits,
@@ -883,9 +884,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
 /// outside the pool, each one is a job injected into it that the calling thread sleeps on (a
 /// futex wake-up and sleep per loop, about a tenth of a 2D step on two threads). On a pool
 /// thread each loop is a fork-join among the workers. Results do not change: how a loop is
-/// split depends on the thread count only.
+/// split depends on the thread count only. The other threads poll for work while `op` runs
+/// ([`with_workers_polling`]), so that none falls asleep between two loops of a step.
 fn on_pool<R: Send>(op: impl FnOnce() -> R + Send) -> R {
-    rayon::scope(|_| op())
+    rayon::scope(|_| with_workers_polling(op))
 }
 
 /// A vector in the flume's x-z plane (the paddle moves in it): `xz[0]` along x, `xz[1]`

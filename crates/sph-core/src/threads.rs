@@ -7,7 +7,7 @@
 //! Also the split of the per-particle loops among a pool's threads ([`for_each_chunk`]) that
 //! keeps each thread on the same slots from one loop to the next.
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use rayon::ThreadPool;
@@ -141,6 +141,59 @@ fn workers<R: Send>(count: usize, work: &(impl Fn() -> R + Sync), merge: &(impl 
     merge(a, b)
 }
 
+/// Runs `op` while the pool's other threads poll for the work of its parallel loops instead of
+/// going to sleep between them; they go back to rayon's usual idling when `op` returns.
+///
+/// Why: a rayon thread that finds no work yields to the OS some 32 times and then sleeps, and
+/// waking it takes a futex call and, in a virtual machine, an interrupt to a halted virtual
+/// CPU. A simulation step is a handful of parallel loops with short serial parts between
+/// them, long enough for the second thread to fall asleep: it then started the next loop 15-60
+/// us late, a few per cent of a 2D step on two threads (docs/benchmarks.md, Session 16). OpenMP
+/// runtimes spin before sleeping for the same reason (GOMP_SPINCOUNT, OMP_WAIT_POLICY).
+pub fn with_workers_polling<R: Send>(op: impl FnOnce() -> R + Send) -> R {
+    let pollers = rayon::current_num_threads().saturating_sub(1);
+    if pollers == 0 || rayon::current_thread_index().is_none() {
+        return op();
+    }
+    let done = AtomicBool::new(false);
+    /// Sets `done` however `op` ends: a panic must not leave the pollers spinning.
+    struct Finish<'a>(&'a AtomicBool);
+    impl Drop for Finish<'_> {
+        fn drop(&mut self) {
+            self.0.store(true, Ordering::Release);
+        }
+    }
+    let run = || {
+        let _finish = Finish(&done);
+        op()
+    };
+    rayon::join(run, || pollers_until(pollers, &done)).0
+}
+
+/// `count` polling loops under nested `rayon::join`s (one per idle thread that takes one), each
+/// running pending rayon work until `done`.
+fn pollers_until(count: usize, done: &AtomicBool) {
+    if count > 1 {
+        let half = count / 2;
+        rayon::join(|| pollers_until(half, done), || pollers_until(count - half, done));
+        return;
+    }
+    let mut idle = 0u32;
+    while !done.load(Ordering::Acquire) {
+        if rayon::yield_now() == Some(rayon::Yield::Executed) {
+            idle = 0;
+            continue;
+        }
+        idle = idle.wrapping_add(1);
+        // let the OS run something else now and then: on a busy host a poller holds a core
+        if idle.is_multiple_of(256) {
+            std::thread::yield_now();
+        } else {
+            std::hint::spin_loop();
+        }
+    }
+}
+
 /// Mutable chunks of a slice handed out by index to the tasks of [`for_each_chunk`], which gives
 /// each index to one task only.
 pub struct Chunks<'a, T> {
@@ -257,5 +310,20 @@ mod tests {
         c[1] = 99;
         assert_eq!(data[9], 99);
         assert_eq!(Chunks::new(&mut Vec::<u32>::new(), 4).count(), 0);
+    }
+
+    /// The result comes back on any pool size with loops inside running on every thread, and a
+    /// panic in `op` reaches the caller instead of leaving the pollers spinning.
+    #[test]
+    fn polling_workers_run_the_loops_and_let_a_panic_through() {
+        for threads in [1, 2, 3] {
+            let sum = on_threads(threads, || {
+                with_workers_polling(|| (0..50).map(|_| for_each_chunk(100, || 0, |c| c, |a, b| a + b)).sum::<usize>())
+            })
+            .expect("pool");
+            assert_eq!(sum, 50 * 4950, "{threads} threads");
+            let caught = std::panic::catch_unwind(|| on_threads(threads, || with_workers_polling(|| panic!("in op"))));
+            assert!(caught.is_err(), "{threads} threads");
+        }
     }
 }
