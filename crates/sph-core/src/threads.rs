@@ -115,14 +115,12 @@ pub fn for_each_chunk<R: Send>(
                 let (front, back) = unpack(state[s].load(Ordering::Acquire));
                 back.saturating_sub(front)
             };
-            let fullest = (0..segments).map(|s| (left(s), std::cmp::Reverse(s))).max().map(|(l, s)| (l, s.0));
-            match fullest {
-                Some((0, _)) | None => break,
-                Some((_, s)) => {
-                    if let Some(c) = claim(&state[s], !s.is_multiple_of(2)) {
-                        acc = merge(acc, op(c));
-                    }
-                }
+            let (most, std::cmp::Reverse(s)) = (0..segments).map(|s| (left(s), std::cmp::Reverse(s))).max().expect("one segment at least");
+            if most == 0 {
+                break;
+            }
+            if let Some(c) = claim(&state[s], !s.is_multiple_of(2)) {
+                acc = merge(acc, op(c));
             }
         }
         acc
@@ -167,17 +165,11 @@ pub fn with_workers_polling<R: Send>(op: impl FnOnce() -> R + Send) -> R {
         let _finish = Finish(&done);
         op()
     };
-    rayon::join(run, || pollers_until(pollers, &done)).0
+    rayon::join(run, || workers(pollers, &|| poll_until(&done), &|(), ()| ())).0
 }
 
-/// `count` polling loops under nested `rayon::join`s (one per idle thread that takes one), each
-/// running pending rayon work until `done`.
-fn pollers_until(count: usize, done: &AtomicBool) {
-    if count > 1 {
-        let half = count / 2;
-        rayon::join(|| pollers_until(half, done), || pollers_until(count - half, done));
-        return;
-    }
+/// Runs pending rayon work until `done`.
+fn poll_until(done: &AtomicBool) {
     let mut idle = 0u32;
     while !done.load(Ordering::Acquire) {
         if rayon::yield_now() == Some(rayon::Yield::Executed) {
