@@ -156,6 +156,7 @@ def test_bench_compare_threads_times_both_counts_in_turn() -> None:
     assert comparison["speedup_runs"] == pytest.approx(
         [a / b for a, b in zip(runs["1"], runs["2"], strict=True)])
     assert comparison["speedup"] == sorted(comparison["speedup_runs"])[1]
+    assert comparison["speedup_fastest"] == pytest.approx(min(runs["1"]) / min(runs["2"]))
     for t in ("1", "2"):
         assert comparison["us_per_particle_step"][t] == pytest.approx(
             1e6 * sorted(runs[t])[1] / (result["n_particles"] * result["steps"]))

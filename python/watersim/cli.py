@@ -8,7 +8,7 @@
     watersim plot DIR
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
                    [--particles N] [--steps K] [--warmup W] [--repeat R] [--compare-threads A,B]
-                   [--set ...] [--json]
+                   [--scaling N1,N2,...] [--set ...] [--json]
     watersim scene CASE [--set key=value ...]
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
@@ -52,6 +52,7 @@ from ._jsonio import json_ready as _jsonable
 from ._jsonio import write_json_atomic
 from ._settings import parse_setting, split_setting
 from .bench_cases import DSPH_CASES, dsph_scene
+from .bench_scaling import ScalingRun, fit_scaling
 from .checkpoint import LastGood
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
@@ -663,6 +664,10 @@ def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int,
             str(t): 1e6 * statistics.median(runs[t]) / (n * steps) for t in counts},
         "speedup_runs": ratios,
         "speedup": statistics.median(ratios),
+        # each count's least disturbed run: on a shared host the host's stalls only ever add
+        # time, and a stall costs two threads more than one (each waits at every join for the
+        # other), so the fastest rounds are the nearest to a quiet machine's ratio
+        "speedup_fastest": min(runs[a]) / min(runs[b]),
     }
 
 
@@ -677,8 +682,69 @@ def cmd_bench(args: argparse.Namespace) -> int:
     if args.repeat < 1:
         raise CliError(f"--repeat: must be at least 1, got {args.repeat}")
     compare = _thread_counts(args.compare_threads) if args.compare_threads is not None else None
+    sizes = _scaling_sizes(args) if args.scaling is not None else None
     # what the process holds before the simulation exists (interpreter, NumPy, the module)
     baseline_rss = _current_rss_bytes()
+    if sizes is not None:
+        return _bench_scaling(args, sizes, baseline_rss)
+    result = _bench_record(args, compare, baseline_rss)
+    _print_bench(result, args.json)
+    return 0 if "error" not in result else 1
+
+
+def _print_bench(result: dict[str, Any], as_json: bool) -> None:
+    if as_json:
+        print(json.dumps(_jsonable(result), allow_nan=False))
+    else:
+        for key, value in result.items():
+            print(f"{key:>22}: {value}")
+
+
+def _scaling_sizes(args: argparse.Namespace) -> list[int]:
+    """``--scaling N1,N2,...``: two or more particle counts of at least 10, in ascending order
+    (the process's peak memory then belongs to the last, largest run)."""
+    if args.particles is not None or args.compare_threads is not None:
+        raise CliError("--scaling: sets the particle counts itself; drop --particles and "
+                       "--compare-threads")
+    try:
+        sizes = [int(part) for part in args.scaling.split(",")]
+    except ValueError:
+        raise CliError(f"--scaling: particle counts N1,N2,..., e.g. 20000,200000,2000000; "
+                       f"got {args.scaling!r}") from None
+    if len(sizes) < 2 or min(sizes) < 10 or len(set(sizes)) != len(sizes):
+        raise CliError(f"--scaling: two or more different counts of at least 10, got "
+                       f"{args.scaling!r}")
+    return sorted(sizes)
+
+
+def _bench_scaling(args: argparse.Namespace, sizes: list[int], baseline_rss: int | None) -> int:
+    """``watersim bench --scaling``: the case at each size in turn (one simulation alive at a
+    time), each timed as a plain bench run, then the spreads and the fit of
+    :func:`watersim.bench_scaling.fit_scaling`."""
+    records = []
+    for n in sizes:
+        record = _bench_record(argparse.Namespace(**{**vars(args), "particles": n}), None,
+                               baseline_rss)
+        records.append(record)
+        if "error" in record:
+            break
+    result: dict[str, Any] = {"case": args.case, "threads": rayon_threads(),
+                              "steps": args.steps, "warmup_steps": args.warmup,
+                              "repeat": args.repeat, "runs": records}
+    failed = any("error" in r for r in records)
+    if not failed:
+        result["scaling"] = fit_scaling([
+            ScalingRun(n_particles=r["n_particles"], n_fluid=r["n_fluid"], wall_s=r["wall_s"],
+                       steps=r["steps"], fluid_pairs=r["fluid_pairs"],
+                       force_evaluations_per_step=r["force_evaluations_per_step"])
+            for r in records])
+    _print_bench(result, args.json)
+    return 1 if failed else 0
+
+
+def _bench_record(args: argparse.Namespace, compare: tuple[int, int] | None,
+                  baseline_rss: int | None) -> dict[str, Any]:
+    """One bench run of ``args``' case: its timings, work, memory and settings."""
     sim = _bench_simulation(args)
     params = sim.params()
     threads = rayon_threads()
@@ -757,12 +823,7 @@ def cmd_bench(args: argparse.Namespace) -> int:
         result["thread_comparison"] = comparison
     if error is not None:
         result["error"] = error
-    if args.json:
-        print(json.dumps(_jsonable(result), allow_nan=False))
-    else:
-        for key, value in result.items():
-            print(f"{key:>22}: {value}")
-    return 0 if error is None else 1
+    return result
 
 
 # ------------------------------------------------------------------------------------------------
@@ -903,6 +964,9 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--compare-threads", metavar="A,B", default=None,
                        help="then R rounds of K steps on A threads and K on B threads in turn, "
                             "and the median ratio of their times (thread_comparison)")
+    bench.add_argument("--scaling", metavar="N1,N2,...", default=None,
+                       help="time the case at each of these particle counts in turn and fit "
+                            "the time per step to fluid and wall particles (scaling)")
     bench.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
     bench.add_argument("--json", action="store_true", help="print one JSON object")
     bench.set_defaults(func=cmd_bench)
