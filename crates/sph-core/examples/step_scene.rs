@@ -1,7 +1,8 @@
 //! Steps a scene given as a JSON file: a target for profilers (`perf record`, callgrind).
 //!
 //! `cargo run --release --example step_scene -- scene.json STEPS [WARMUP]` (WARMUP untimed
-//! steps first, 3 by default: a developed flow sorts and moves more than the first steps do)
+//! steps first, 3 by default: a developed flow sorts and moves more than the first steps do);
+//! with `--features phase-timers` it also prints the wall time per phase of a step.
 //! (`watersim bench --case dsph-dambreak3d` prints the same case's figure from Python; write a
 //! case's scene with `python3 -c "import json, watersim.bench_cases as b;
 //! print(json.dumps(b.dsph_scene('dsph-dambreak3d')))" > scene.json`.)
@@ -16,6 +17,7 @@ fn main() {
     let text = std::fs::read_to_string(&path).expect("read the scene file");
     let mut sim = sph_core::build_from_json(&text).unwrap_or_else(|e| panic!("{e}"));
     sim.step(warmup).unwrap_or_else(|e| panic!("{e}"));
+    sph_core::phases::reset();
     let t0 = Instant::now();
     let cpu0 = process_cpu_seconds();
     sim.step(steps).unwrap_or_else(|e| panic!("{e}"));
@@ -30,6 +32,9 @@ fn main() {
         1e6 * cpu / (n * steps as f64),
         state_digest(sim.as_ref())
     );
+    if let Some(table) = sph_core::phases::report(steps) {
+        println!("{table}");
+    }
 }
 
 /// FNV-1a of positions, velocities and densities in particle-id order: equal exactly when the

@@ -12,6 +12,7 @@ pub mod math;
 pub mod motion;
 pub mod neighbours;
 pub mod particles;
+pub mod phases;
 pub mod physics;
 pub mod probes;
 pub mod scene;

@@ -6,10 +6,12 @@
 //! candidates (42 % fewer in 3D) for 25 rows instead of 9.
 //!
 //! Particles live in three contiguous groups (fixed boundary, moving boundary, fluid). Within a
-//! group they are sorted by cell, x fastest, so the three cells of a stencil row are one
-//! contiguous range. `starts[g][c]` is the first index of cell `c` in group `g` (absolute index
-//! into the particle arrays). Neighbours of a point are visited row by row (z, y ascending, then
-//! x), and within a cell in storage order: a fixed order, so sums do not depend on threads.
+//! group they are sorted by cell with the vertical fastest and x slowest (see [`axis`]), so the
+//! cells of a stencil row, a vertical run, are one contiguous range. Below, "grid axis 0" is the
+//! fast one. `starts[g][c]` is the first index of cell `c` in group `g` (absolute index into the
+//! particle arrays). Neighbours of a point are visited row by row (slow axis, then middle axis
+//! ascending, then up the row), and within a cell in storage order: a fixed order, so sums do
+//! not depend on threads.
 //!
 //! Positions outside the grid are clamped to the edge cells. Clamping is monotone and moves a
 //! coordinate by at most the distance it exceeds the edge, so two points within the support stay
@@ -31,11 +33,28 @@ const KEY_CHUNK: usize = 1024;
 /// one in this many.
 const MOVER_SHARE: usize = 8;
 
+/// The physical axis of grid axis `k`: the vertical is the fast axis, x the slow one (y in
+/// between in 3D).
+///
+/// Why: a particle that changes cell shifts by one slot every particle stored between its old
+/// and its new cell, and the sort then moves every block of slots that shifted (see
+/// [`crate::particles::permute_carried`]). Flumes and dam breaks are wider than deep: with x
+/// fastest, a particle that crossed a cell boundary vertically shifted a whole row of the
+/// water's length, with the vertical fastest it shifts at most a column of the water's depth.
+/// In the 2D dam break's developed flow (steps 3,000-3,300) the moved blocks per step fell from
+/// 61 to 35 of 164 and the sort from 98 to 69 us per step on one thread and from 168 to 62 on
+/// two, where it had been the one phase slower on two threads than on one (docs/benchmarks.md,
+/// Session 17). The force loop's cost does not depend on the order.
+#[inline(always)]
+fn axis<D: Dim>(k: usize) -> usize {
+    D::DIM - 1 - k
+}
+
 /// Largest stencil reach the grid accepts.
 pub const MAX_REACH: usize = 3;
 
 /// Cells of a stencil row out of reach below and above the particle's cell, for reach `r`:
-/// `near2` (see [`CellGrid::stencil_rows`]) holds the squared distances along x, `d2` the row's
+/// `near2` (see [`CellGrid::stencil_rows`]) holds the squared distances along grid axis 0, `d2` the row's
 /// distance across. Inlined, so a constant `r` unrolls the loop.
 #[inline(always)]
 fn out_of_reach(d2: Real, near2: &[Real; 2 * MAX_REACH + 1], limit: Real, r: usize) -> (usize, usize) {
@@ -65,7 +84,7 @@ pub struct CellGrid<D: Dim> {
     inv_cell: Real,
     /// Stencil half-width in cells.
     reach: usize,
-    /// Cells along x, y, z (z = 1 in 2D).
+    /// Cells along grid axes 0, 1, 2 (see [`axis`]; 1 along axis 2 in 2D).
     dims: [usize; 3],
     n_cells: usize,
     /// Per group, `n_cells + 1` entries; empty for a group the scene does not have
@@ -102,7 +121,7 @@ impl<D: Dim> CellGrid<D> {
         let cell_size = support / reach as Real;
         let mut dims = [1usize; 3];
         for (k, d) in dims.iter_mut().enumerate().take(D::DIM) {
-            let extent = (hi.get(k) - lo.get(k)).max(0.0);
+            let extent = (hi.get(axis::<D>(k)) - lo.get(axis::<D>(k))).max(0.0);
             *d = ((extent / cell_size).floor() as usize).max(1);
         }
         let n_cells = dims[0] * dims[1] * dims[2];
@@ -160,10 +179,10 @@ impl<D: Dim> CellGrid<D> {
         self.coord_u32(p, k) as usize
     }
 
-    /// The cell coordinate of `p` along axis `k`, clamped to the grid.
+    /// The cell coordinate of `p` along grid axis `k`, clamped to the grid.
     #[inline(always)]
     fn coord_u32(&self, p: D::V, k: usize) -> u32 {
-        let c = (p.get(k) - self.origin.get(k)) * self.inv_cell;
+        let c = (p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))) * self.inv_cell;
         // Truncation is the floor for c >= 0 (negative c clamps to 0 anyway) and, unlike
         // `floor()`, needs no libm call on x86-64 targets without SSE4.1 (it cost 2 % of a
         // step). NaN goes to 0 through `max`; the monitors report NaN separately. Clamped
@@ -174,7 +193,7 @@ impl<D: Dim> CellGrid<D> {
         unsafe { c.to_int_unchecked::<i32>() as u32 }
     }
 
-    /// The cell of `p` (x fastest), in 32-bit integers, which the sort's key pass vectorises.
+    /// The cell of `p` (grid axis 0 fastest), in 32-bit integers, which the sort's key pass vectorises.
     #[inline(always)]
     fn cell_key(&self, p: D::V) -> u32 {
         let mut key = 0;
@@ -381,8 +400,9 @@ impl<D: Dim> CellGrid<D> {
     }
 
     /// The stencil rows around `p`, trimmed to the cells that reach within the support of `p`:
-    /// a row is left out when its nearest point in (y, z) is a support or more away, and its
-    /// x range ends at the last cell whose nearest point is within the support (about a third
+    /// a row is left out when its nearest point across it (grid axes 1 and 2) is a support or
+    /// more away, and its range along grid axis 0 ends at the last cell whose nearest point is
+    /// within the support (about a third
     /// fewer candidates in 3D with `reach = 2`). The rows keep the order of
     /// [`CellGrid::for_each_near`], so the pairs found (those within the support) and their
     /// order are the same. Cell ranges; [`CellGrid::row_slots`] turns them into particle slots.
@@ -398,7 +418,7 @@ impl<D: Dim> CellGrid<D> {
         let mut near2 = [[0.0 as Real; 2 * MAX_REACH + 1]; 3];
         let mut trim = true;
         for (k, nk) in near2.iter_mut().enumerate().take(D::DIM) {
-            let u = (p.get(k) - self.origin.get(k)) * self.inv_cell - c[k] as Real;
+            let u = (p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))) * self.inv_cell - c[k] as Real;
             trim &= (0.0..1.0).contains(&u);
             for o in 1..=r {
                 let below = u + (o - 1) as Real;
@@ -410,6 +430,7 @@ impl<D: Dim> CellGrid<D> {
         // A hair above r^2: rounding of the cell-unit distances must never drop a pair.
         let limit = if trim { (r * r) as Real * (1.0 + 1e-9) } else { Real::INFINITY };
         let span = |k: usize| (c[k].saturating_sub(r), (c[k] + r).min(self.dims[k] - 1));
+        // x, y, z here are grid axes 0, 1, 2 (see `axis`): x along the rows
         let (x_lo, x_hi) = span(0);
         let (y_lo, y_hi) = span(1);
         let (z_lo, z_hi) = if D::DIM == 3 { span(2) } else { (0, 0) };
@@ -455,6 +476,7 @@ impl<D: Dim> CellGrid<D> {
         let c = self.coords(p);
         let r = self.reach;
         let span = |k: usize| (c[k].saturating_sub(r), (c[k] + r).min(self.dims[k] - 1));
+        // x, y, z here are grid axes 0, 1, 2 (see `axis`): x along the rows
         let (x_lo, x_hi) = span(0);
         let (y_lo, y_hi) = span(1);
         let (z_lo, z_hi) = if D::DIM == 3 { span(2) } else { (0, 0) };

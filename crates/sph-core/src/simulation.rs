@@ -15,6 +15,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::motion::PaddlePose;
+use crate::phases::{self, Phase};
 use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::threads::with_workers_polling;
@@ -725,14 +726,20 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let perm = &mut perm[..range.len()];
         // the cell keys live in the gather buffer: they are dead before `permute` reuses it
         let keys = bytemuck::cast_slice_mut::<u64, u32>(gather);
+        let mut timer = phases::Timer::start();
         self.grid.sort_group(g, range.clone(), pos, perm, keys);
+        timer.lap(Phase::SortGrid);
         let perm = &*perm;
-        if mark_moved_blocks(perm, range.start, ranks, moved) == 0 {
+        let moved_blocks = mark_moved_blocks(perm, range.start, ranks, moved);
+        timer.lap(Phase::SortMark);
+        if moved_blocks == 0 {
             return;
         }
+        phases::count_moved_blocks(moved_blocks);
         let (hist_v, hist_r) = self.history.arrays_mut();
         let arrays = Carried { vectors: [pos, vel, hist_v], reals: [rho, hist_r], id, kind };
         permute_carried(arrays, range, perm, ranks, moved, gather);
+        timer.lap(Phase::SortPermute);
     }
 
     /// The particle arrays (storage order).
@@ -755,6 +762,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.sort_group(GROUP_FLUID);
         let c = self.c;
         let fs = self.p.fluid_start();
+        let mut timer = phases::Timer::start();
         if self.scene.boundary == Boundary::Adami {
             self.update_moving_acc();
             let p = &mut self.p;
@@ -772,7 +780,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
         let (kernel, grid) = (&self.kernel, &self.grid);
         let mut fluid = || fluid_forces::<D, K, VISC, DIFF>(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
-        match self.scene.boundary {
+        let limits = match self.scene.boundary {
             // The walls' continuity and the fluid's forces read the same fields and write apart:
             // one fork-join for both, so that the threads wait for each other once, not twice
             // (a thread the host stalls holds up every join; docs/benchmarks.md, Session 15).
@@ -785,7 +793,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 drho_walls.fill(0.0);
                 fluid()
             }
-        }
+        };
+        timer.lap(Phase::Forces);
+        limits
     }
 
     /// Particle shifting's fields from the current (sorted) state; nothing without shifting.
@@ -864,7 +874,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.steps += 1;
         // the paddle at the step's end before the sweep's monitor tests its slots
         self.move_boundaries(self.time);
+        let mut timer = phases::Timer::start();
         let found = self.sweep(rule, dt, true);
+        timer.lap(Phase::Sweep);
         self.n_excluded += found.newly_excluded;
         if let Some((_, slot, kind)) = found.bad {
             return Err(self.monitor_error(slot, kind));
@@ -930,7 +942,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     fn step(&mut self, n: u64) -> Result<()> {
         on_pool(|| {
             for _ in 0..n {
+                let mut timer = phases::Timer::start();
                 self.step_once()?;
+                timer.lap(Phase::Step);
             }
             Ok(())
         })
