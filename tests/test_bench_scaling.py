@@ -85,3 +85,14 @@ def test_bench_scaling_times_each_size_and_fits_them() -> None:
 def test_bench_scaling_refuses_bad_sizes(extra: tuple[str, ...]) -> None:
     proc = run_cli("bench", "--case", "dsph-dambreak3d", *extra)
     assert proc.returncode == 2 and "--scaling" in proc.stderr, proc.stderr
+
+
+def test_bench_scaling_prints_a_table_without_json() -> None:
+    proc = run_cli("bench", "--case", "dambreak2d", "--scaling", "1000,2000", "--steps", "1",
+                   "--warmup", "0", env={"RAYON_NUM_THREADS": "1"})
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].startswith("dambreak2d on 1 thread(s)")
+    assert len([line for line in lines if line.split()[0].isdigit()]) == 2
+    assert any(line.startswith("spread counted:") for line in lines)
+    assert lines[-1].startswith("fit: ") and "us per wall particle-step" in lines[-1]

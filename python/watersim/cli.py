@@ -738,8 +738,41 @@ def _bench_scaling(args: argparse.Namespace, sizes: list[int], baseline_rss: int
                        steps=r["steps"], fluid_pairs=r["fluid_pairs"],
                        force_evaluations_per_step=r["force_evaluations_per_step"])
             for r in records])
-    _print_bench(result, args.json)
+    if args.json:
+        _print_bench(result, True)
+    else:
+        print(_scaling_table(result))
     return 1 if failed else 0
+
+
+def _scaling_table(result: dict[str, Any]) -> str:
+    """``watersim bench --scaling`` without ``--json``: one line per size, then the spreads and
+    the fit."""
+    lines = [f"{result['case']} on {result['threads']} thread(s), {result['steps']} steps "
+             f"after {result['warmup_steps']}, median of {result['repeat']}",
+             f"{'particles':>10} {'fluid':>10} {'walls':>6} {'us/particle-step':>17} "
+             f"{'us/fluid particle':>18} {'ns/pair':>8} {'bytes/particle':>15}"]
+    for r in result["runs"]:
+        if "error" in r:
+            lines.append(f"{r['n_particles']:>10} stopped: {r['error']}")
+            continue
+        walls = 1 - r["n_fluid"] / r["n_particles"]
+        per_fluid = r["us_per_particle_step"] * r["n_particles"] / r["n_fluid"]
+        pair = f"{r['ns_per_pair']:8.2f}" if r["ns_per_pair"] else f"{'-':>8}"
+        lines.append(f"{r['n_particles']:>10} {r['n_fluid']:>10} {walls:6.0%} "
+                     f"{r['us_per_particle_step']:17.3f} {per_fluid:18.3f} {pair} "
+                     f"{r['bytes_per_particle']:15.1f}")
+    scaling = result.get("scaling")
+    if scaling is not None:
+        limit = scaling["spread_limit"]
+        for key, spread in scaling["spread"].items():
+            verdict = "within" if scaling["within_limit"][key] else "beyond"
+            lines.append(f"spread {key.replace('_', ' ')}: {spread:.1%} ({verdict} {limit:.0%})")
+        fit = scaling["fit"]
+        lines.append(f"fit: {fit['us_per_fluid_particle_step']:.3f} us per fluid particle-step, "
+                     f"{fit['us_per_wall_particle_step']:.3f} us per wall particle-step, largest "
+                     f"residual {fit['max_abs_relative_residual']:.1%}")
+    return "\n".join(lines)
 
 
 def _bench_record(args: argparse.Namespace, compare: tuple[int, int] | None,
