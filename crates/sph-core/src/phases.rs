@@ -18,7 +18,7 @@ pub enum Phase {
     SortPermute,
     /// Wall densities, SPS stress, the fluid's forces and the walls' continuity.
     Forces,
-    /// The integrator's sweep.
+    /// The integrator's sweeps (the Symplectic predictor's and every step's last).
     Sweep,
     /// The whole step.
     Step,

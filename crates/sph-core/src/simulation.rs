@@ -854,7 +854,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             History::Symplectic { .. } => {
                 let lim = self.compute_forces();
                 let dt = self.time_step(lim)?;
+                let mut timer = phases::Timer::start();
                 self.sweep(Rule::Predictor, dt, false);
+                timer.lap(Phase::Sweep);
                 // the corrector's forces with the paddle at mid-step
                 self.move_boundaries(self.time + 0.5 * dt);
                 let _ = self.compute_forces();
