@@ -74,23 +74,23 @@ def fit_scaling(runs: Sequence[ScalingRun]) -> dict[str, Any]:
                              f"n_particles, got {r}")
     counted = [1e6 * r.step_s / r.n_particles for r in runs]
     per_fluid = [1e6 * r.step_s / r.n_fluid for r in runs]
-    per_pair = [1e9 * r.step_s / (r.fluid_pairs * r.force_evaluations_per_step)
-                for r in runs if r.fluid_pairs > 0]
-    # t_i = a Nf_i + b Nw_i, each row divided by t_i: every size weighs the same
+    per_pair = ([1e9 * r.step_s / (r.fluid_pairs * r.force_evaluations_per_step) for r in runs]
+                if all(r.fluid_pairs > 0 for r in runs) else None)
+    # t_i = a Nf_i + b Nw_i, each row divided by t_i: every size weighs the same, and the
+    # model's relative residual is the row's product with (a, b) less one
     t = np.array([r.step_s for r in runs])
     design = np.array([[r.n_fluid, r.n_walls] for r in runs], dtype=float) / t[:, None]
     (a, b), *_ = np.linalg.lstsq(design, np.ones(len(runs)), rcond=None)
-    model = a * np.array([r.n_fluid for r in runs]) + b * np.array([r.n_walls for r in runs])
-    residuals = model / t - 1.0
+    residuals = design @ np.array([a, b]) - 1.0
     spreads = {"counted": _spread(counted), "per_fluid_particle": _spread(per_fluid)}
-    if len(per_pair) == len(runs):
+    if per_pair is not None:
         spreads["per_pair"] = _spread(per_pair)
     return {
         "sizes": [r.n_particles for r in runs],
         "wall_share": [r.n_walls / r.n_particles for r in runs],
         "us_per_particle_step": counted,
         "us_per_fluid_particle_step": per_fluid,
-        "ns_per_pair": per_pair if len(per_pair) == len(runs) else None,
+        "ns_per_pair": per_pair,
         "spread": spreads,
         "within_limit": {k: v <= SPREAD_LIMIT for k, v in spreads.items()},
         "spread_limit": SPREAD_LIMIT,

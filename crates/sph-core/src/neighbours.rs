@@ -179,10 +179,16 @@ impl<D: Dim> CellGrid<D> {
         self.coord_u32(p, k) as usize
     }
 
+    /// Where `p` lies along grid axis `k`, in cells from the grid's origin (not clamped).
+    #[inline(always)]
+    fn cell_units(&self, p: D::V, k: usize) -> Real {
+        (p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))) * self.inv_cell
+    }
+
     /// The cell coordinate of `p` along grid axis `k`, clamped to the grid.
     #[inline(always)]
     fn coord_u32(&self, p: D::V, k: usize) -> u32 {
-        let c = (p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))) * self.inv_cell;
+        let c = self.cell_units(p, k);
         // Truncation is the floor for c >= 0 (negative c clamps to 0 anyway) and, unlike
         // `floor()`, needs no libm call on x86-64 targets without SSE4.1 (it cost 2 % of a
         // step). NaN goes to 0 through `max`; the monitors report NaN separately. Clamped
@@ -418,7 +424,7 @@ impl<D: Dim> CellGrid<D> {
         let mut near2 = [[0.0 as Real; 2 * MAX_REACH + 1]; 3];
         let mut trim = true;
         for (k, nk) in near2.iter_mut().enumerate().take(D::DIM) {
-            let u = (p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))) * self.inv_cell - c[k] as Real;
+            let u = self.cell_units(p, k) - c[k] as Real;
             trim &= (0.0..1.0).contains(&u);
             for o in 1..=r {
                 let below = u + (o - 1) as Real;
