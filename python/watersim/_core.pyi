@@ -24,6 +24,10 @@ class InstabilityError(RuntimeError):
     position: list[float]
     """Where the particle was [m]."""
 
+def resolve_scene(scene_json: str) -> str:
+    """The scene as the core runs it: checked (``SceneError`` naming the field) and returned as
+    JSON with every default filled in."""
+
 class Simulation:
     """A WCSPH simulation built from a scene in its JSON form."""
 

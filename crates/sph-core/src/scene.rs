@@ -345,6 +345,12 @@ impl Scene {
         Ok(scene)
     }
 
+    /// The scene as the core runs it, every default filled in, as JSON (what Python compares
+    /// its builders against: the core's defaults are the only ones).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| unreachable!("a Scene always serialises: {e}"))
+    }
+
     /// Smoothing length `h = coefh * sqrt(dim) * dp`.
     pub fn h(&self) -> Real {
         self.coefh * (self.dim as Real).sqrt() * self.dp

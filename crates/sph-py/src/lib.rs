@@ -345,9 +345,17 @@ impl Simulation {
     }
 }
 
+/// The scene as the core runs it: parsed, checked (raising `SceneError` naming the field) and
+/// returned as JSON with every default filled in.
+#[pyfunction]
+fn resolve_scene(py: Python<'_>, scene_json: &str) -> PyResult<String> {
+    sph_core::Scene::from_json(scene_json).map(|s| s.to_json()).map_err(|e| to_py_err(py, e))
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulation>()?;
+    m.add_function(wrap_pyfunction!(resolve_scene, m)?)?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("InstabilityError", m.py().get_type::<InstabilityError>())?;
     Ok(())

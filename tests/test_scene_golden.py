@@ -1,0 +1,79 @@
+"""Every built-in case and every ``examples/*.toml`` builds the same core scene as recorded in
+``tests/data/scene_golden.json`` (recorded from main at 1b66fb8, before the "one home per model"
+refactor): the refactor moves code, not numbers.
+
+Scenes are compared as the core resolves them (``watersim._core.resolve_scene``: every default
+filled in by the core), so a key the Python side stops sending because the core's default is the
+same value compares equal, and a changed default anywhere does not.
+
+Rewrite the record (only for an intended change of a case, said in the commit):
+``python3 tests/test_scene_golden.py --write``.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import warnings
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from watersim import _core
+from watersim.bench_cases import DSPH_CASES, dsph_scene
+from watersim.cli import ALL_CASES, builder_from_args
+
+ROOT = Path(__file__).resolve().parents[1]
+GOLDEN = ROOT / "tests" / "data" / "scene_golden.json"
+EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
+
+
+def _case_names() -> list[str]:
+    return [*ALL_CASES, *DSPH_CASES, *(f"examples/{p.name}" for p in EXAMPLES)]
+
+
+def core_scene(name: str) -> dict[str, Any]:
+    """The core's resolved scene of a built-in case, a DualSPHysics bench case or a scene file."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # wave-validity warnings of some cases
+        if name in DSPH_CASES:
+            scene = dsph_scene(name)
+        elif name.startswith("examples/"):
+            scene = builder_from_args(str(ROOT / name), []).to_scene()
+        else:
+            scene = builder_from_args(name, []).to_scene()
+    return json.loads(_core.resolve_scene(json.dumps(scene)))
+
+
+@pytest.fixture(scope="module")
+def golden() -> dict[str, Any]:
+    return json.loads(GOLDEN.read_text())
+
+
+def test_every_case_is_recorded(golden: dict[str, Any]) -> None:
+    assert sorted(golden) == sorted(_case_names())
+
+
+@pytest.mark.parametrize("name", _case_names())
+def test_case_builds_the_recorded_core_scene(name: str, golden: dict[str, Any]) -> None:
+    assert core_scene(name) == golden[name]
+
+
+def test_resolution_fills_the_cores_defaults() -> None:
+    """The comparison above is only as strict as the resolution: a bare scene gets every
+    default, and the defaults are the ones the core runs with."""
+    bare = {"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [2, 1]},
+            "fluid": [{"min": [0, 0], "max": [1, 0.5]}]}
+    resolved = json.loads(_core.resolve_scene(json.dumps(bare)))
+    assert resolved["viscosity"] == {"model": "artificial", "alpha": 0.01}
+    assert resolved["diffusion"] == {"model": "fourtakas", "delta": 0.1}
+    assert resolved["cfl"] == 0.2
+    with pytest.raises(_core.SceneError, match="dp"):
+        _core.resolve_scene(json.dumps({**bare, "dp": -1.0}))
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["--write"]:
+    rows = [f"{json.dumps(n)}: {json.dumps(core_scene(n), sort_keys=True)}" for n in sorted(_case_names())]
+    GOLDEN.write_text("{\n" + ",\n".join(rows) + "\n}\n")  # one case a line: diffs name the case
+    print(f"written: {GOLDEN}")
