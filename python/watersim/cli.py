@@ -46,18 +46,17 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
-from . import __version__
+from . import __version__, overrides
 from ._core import InstabilityError, SceneError
 from ._jsonio import json_ready as _jsonable
 from ._jsonio import write_json_atomic
-from ._settings import parse_setting, split_setting
 from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .checkpoint import LastGood
+from .errors import CliError
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
     FLUME_CASES,
-    FlumeCaseError,
     case_extras,
     flume_builder,
     flume_settable_keys,
@@ -87,10 +86,6 @@ ALL_CASES: tuple[str, ...] = (*CASES, *FLUME_CASES)
 """Every case ``watersim run`` knows: the verification cases, then the wave-flume cases."""
 
 BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d", *DSPH_CASES)
-
-
-class CliError(Exception):
-    """Bad command-line input: printed as one line, exit code 2."""
 
 
 # ------------------------------------------------------------------------------------------------
@@ -125,22 +120,6 @@ def settable_keys(case: str) -> list[str]:
     return sorted(name for name in cls.field_names() if name not in skip)
 
 
-def _parse_value(cls: type[SceneBuilder], key: str, text: str) -> Any:
-    """Convert ``text`` to the type of field ``key`` of ``cls``."""
-    return parse_setting(typing.get_type_hints(cls)[key], key, text, CliError)
-
-
-def _split_settings(settings: Sequence[str]) -> list[tuple[str, str]]:
-    """``key=value`` items as ``(key, value)`` pairs; CliError for an item without ``=``."""
-    pairs = []
-    for item in settings:
-        pair = split_setting(item)
-        if pair is None:
-            raise CliError(f"--set: expected key=value, got {item!r}")
-        pairs.append(pair)
-    return pairs
-
-
 def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     """The case's builder with ``key=value`` overrides applied (and checked).
 
@@ -151,27 +130,19 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     if is_scene_file(case):
         return load_scene_file(case, settings).builder
     if case in FLUME_CASES:
-        return _flume_builder_from_args(case, settings)
+        return flume_builder(case, {o.key: o.text for o in overrides.parse(settings)})
     if case not in CASES:
         raise CliError(f"case: unknown case {case!r}; valid cases: {', '.join(ALL_CASES)}")
     cls, fixed = CASES[case]
     valid = settable_keys(case)
-    overrides: dict[str, Any] = {}
-    for key, text in _split_settings(settings):
-        if key not in valid:
-            why = f"is fixed by the case {case}" if key in fixed else f"is unknown for {case}"
-            raise CliError(f"--set: key {key!r} {why}; valid keys: {', '.join(valid)}")
-        overrides[key] = _parse_value(cls, key, text)
-    return cls(**fixed, **overrides)
-
-
-def _flume_builder_from_args(case: str, settings: Sequence[str]) -> FlumeScene:
-    """A flume case's scene (:mod:`watersim.flume_cases`) with ``key=value`` overrides."""
-    items = dict(_split_settings(settings))
-    try:
-        return flume_builder(case, items)
-    except FlumeCaseError as exc:
-        raise CliError(str(exc)) from None
+    hints = typing.get_type_hints(cls)
+    values: dict[str, Any] = {}
+    for item in overrides.parse(settings):
+        if item.key not in valid:
+            why = f"is fixed by the case {case}" if item.key in fixed else f"is unknown for {case}"
+            raise CliError(f"--set: key {item.key!r} {why}; valid keys: {', '.join(valid)}")
+        values[item.key] = item.typed(hints[item.key])
+    return cls(**fixed, **values)
 
 
 def _write_json(path: Path, data: dict[str, Any]) -> None:
@@ -557,13 +528,13 @@ def _dsph_overrides(case: str, settings: list[str]) -> dict[str, str]:
     terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64). Empty
     without ``--set``: the case's own scene then stands as it is."""
     overrides: dict[str, str] = {}
-    for key, text in _split_settings(settings):
-        if key != "force_precision":
+    for item in overrides.parse(settings):
+        if item.key != "force_precision":
             raise CliError(
                 f"--set: {case} reproduces DualSPHysics' settings exactly and takes no "
-                f"override but force_precision, got {key!r} (use --particles N to scale it)"
+                f"override but force_precision, got {item.key!r} (use --particles N to scale it)"
             )
-        precision = text.strip()
+        precision = item.text.strip()
         if precision not in FORCE_PRECISIONS:
             raise CliError(
                 f"--set: force_precision must be one of {', '.join(FORCE_PRECISIONS)}, "

@@ -26,18 +26,16 @@ two dp that do.
 from __future__ import annotations
 
 import dataclasses
-import typing
 import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from importlib import resources
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 
 from . import analysis as an
 from . import wave_theory as wt
-from ._settings import is_scalar, parse_setting
 from .flume import (
     DampingZone,
     ElevationGauge,
@@ -51,6 +49,7 @@ from .flume import (
     elevation_gauges_between,
     lattice_dp,
 )
+from .overrides import OverrideError, Overrides
 from .scenes import SceneBuilder, _positive
 
 __all__ = [
@@ -63,8 +62,6 @@ __all__ = [
     "flume_builder",
     "flume_settable_keys",
 ]
-
-T = TypeVar("T")
 
 STANSBY_GAUGES: tuple[float, ...] = (
     1.1, 2.4, 3.4, 3.9, 4.4, 4.9, 5.3, 5.54, 5.6, 5.74, 5.88, 5.96,
@@ -94,72 +91,30 @@ dp = 0.01 m, using up a 5 % height tolerance within three wavelengths; 0.003 cos
 6.6 % of the height at 1 L and 3.0 % per wavelength from 1 to 2 L)."""
 
 
-class FlumeCaseError(Exception):
-    """A bad ``--set`` key or value for a flume case (the CLI prints it, exit code 2)."""
+FlumeCaseError = OverrideError
+"""A bad ``--set`` key or value for a flume case (the CLI prints it, exit code 2)."""
 
 
 # ------------------------------------------------------------------------------------------------
 # --set handling
 
 
-def _parse(hint: Any, key: str, text: str) -> Any:
-    """``text`` converted to the type ``hint`` (float, int, bool, str, or optional of those)."""
-    return parse_setting(hint, key, text, FlumeCaseError)
+class _Settings(Overrides):
+    """The ``--set`` values of one flume case: its objects' dotted keys (:meth:`apply`), its
+    positive lengths (:meth:`value`) and its numerical parameters (:meth:`numerics`)."""
 
-
-class _Settings:
-    """The ``--set`` values of one run, handed out to the case's objects.
-
-    Every key a case offers is recorded in :attr:`keys`, whether or not it was set, so that the
-    same case function lists its keys (run once with no values) and applies them.
-    """
-
-    def __init__(self, items: Mapping[str, str]) -> None:
-        self.items = dict(items)
-        self.used: set[str] = set()
-        self.keys: list[str] = []
-
-    def apply(self, prefix: str, obj: T, skip: tuple[str, ...] = ()) -> T:
-        """``obj`` (a dataclass) with its ``prefix.field`` values applied (checked again)."""
-        hints = typing.get_type_hints(type(obj))
-        changes: dict[str, Any] = {}
-        for f in dataclasses.fields(obj):  # type: ignore[arg-type]
-            if f.name in skip or not f.init or not is_scalar(hints[f.name]):
-                continue
-            key = f"{prefix}.{f.name}"
-            self.keys.append(key)
-            if key in self.items:
-                changes[f.name] = _parse(hints[f.name], key, self.items[key])
-                self.used.add(key)
-        return dataclasses.replace(obj, **changes) if changes else obj  # type: ignore[type-var]
-
-    def value(self, key: str, default: Any, hint: Any = float) -> Any:
+    def value(self, key: str, default: Any, hint: Any = float,
+              check: Callable[[str, Any], Any] | None = _positive) -> Any:
         """A single case parameter ``key`` (default ``default``); a float must be positive."""
-        self.keys.append(key)
-        if key not in self.items:
-            return default
-        self.used.add(key)
-        value = _parse(hint, key, self.items[key])
-        if hint is float:
-            _positive(key, value)
-        return value
+        return super().value(key, default, hint, check if hint is float else None)
 
     def numerics(self, **defaults: Any) -> dict[str, Any]:
         """The numerical parameters (:class:`~watersim.SceneBuilder` fields and
         ``sample_interval``): the case's ``defaults`` with the values set applied."""
-        hints = typing.get_type_hints(FlumeScene)
-        out = dict(defaults)
-        for name in (*SceneBuilder.field_names(), "sample_interval"):
-            if name in ("dim", "energy_growth_limit"):  # fixed by the flume, unused with a paddle
-                continue
-            self.keys.append(name)
-            if name in self.items:
-                out[name] = _parse(hints[name], name, self.items[name])
-                self.used.add(name)
-        return out
-
-    def was_set(self, key: str) -> bool:
-        return key in self.items
+        # dim is fixed by the flume; the energy monitor does not run with a paddle
+        names = [n for n in (*SceneBuilder.field_names(), "sample_interval")
+                 if n not in ("dim", "energy_growth_limit")]
+        return self.fields(FlumeScene, names, defaults)
 
 
 def _quiet_scene(**kwargs: Any) -> FlumeScene:

@@ -45,8 +45,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
+from . import overrides
 from ._core import SceneError
-from ._settings import NONE_WORDS, split_setting
 from .flume import (
     RAMPS,
     SPECTRA,
@@ -460,21 +460,6 @@ def load(path: str | Path, settings: Sequence[str] = ()) -> SceneFile:
 # ------------------------------------------------------------------------------------------------
 # --set on a scene file
 
-_TOKEN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[\d+\])*)$")
-
-
-def _tokens(key: str, source: str) -> list[str | int]:
-    """``gauges[2].x`` -> ``["gauges", 2, "x"]``."""
-    out: list[str | int] = []
-    for part in key.split("."):
-        m = _TOKEN.match(part.strip())
-        if m is None:
-            raise SceneFileError(f"{source}: --set: bad key {key!r} (expected names joined by "
-                                 "dots, with [i] for array items)")
-        out.append(m.group(1))
-        out.extend(int(i) for i in re.findall(r"\[(\d+)\]", m.group(2)))
-    return out
-
 
 def _hint_at(data: Mapping[str, Any], tokens: Sequence[str | int]) -> Any:
     """The type hint of the field at ``tokens`` in the document, or None if unknown there."""
@@ -510,69 +495,21 @@ def _hint_at(data: Mapping[str, Any], tokens: Sequence[str | int]) -> Any:
     return hint
 
 
-def _parse_text(text: str) -> Any:
-    """A ``--set`` value: a TOML value (``0.02``, ``2``, ``true``, ``[1.0, 2.0]``,
-    ``"name"``), else the text itself as a string (``--set wave.type=irregular``)."""
-    try:
-        return tomllib.loads(f"v = {text}")["v"]
-    except tomllib.TOMLDecodeError:
-        return text.strip()
-
-
 def apply_settings(data: dict[str, Any], settings: Sequence[str], source: str = "scene") -> None:
     """Apply ``key=value`` overrides to a parsed scene file, in place.
 
     Keys are dotted paths (``dp``, ``wave.height``, ``flume.beach.slope``, ``gauges[0].x``,
     ``output.snapshot_every``); missing tables on the way are created. Values are TOML values;
     a bare word is a string. ``none`` (or ``null``, ``auto``) removes an optional field, so it
-    takes its default. The result is checked like the file itself.
+    takes its default (:func:`watersim.overrides.apply_to_document`). The result is checked
+    like the file itself.
     """
-    for item in settings:
-        pair = split_setting(item)
-        if pair is None:
-            raise SceneFileError(f"{source}: --set: expected key=value, got {item!r}")
-        key, text = pair
-        tokens = _tokens(key, source)
-        hint = _hint_at(data, tokens)
-        members = _union_args(hint) or ()
-        remove = (
-            text.strip().lower() in NONE_WORDS
-            and type(None) in members
-            and str not in members
-        )
-        node: Any = data
-        for i, tok in enumerate(tokens[:-1]):
-            where = _path(tokens[: i + 1])
-            if isinstance(tok, int):
-                if not isinstance(node, list) or tok >= len(node):
-                    size = len(node) if isinstance(node, list) else 0
-                    raise SceneFileError(f"{source}: --set {key}: {where}: no such item "
-                                         f"({size} in the file)")
-                node = node[tok]
-            else:
-                if not isinstance(node, dict):
-                    raise SceneFileError(f"{source}: --set {key}: {where}: not a table")
-                nxt = tokens[i + 1]
-                node = node.setdefault(tok, [] if isinstance(nxt, int) else {})
-        last = tokens[-1]
-        if isinstance(last, int):
-            if not isinstance(node, list) or last >= len(node):
-                raise SceneFileError(f"{source}: --set {key}: no such item")
-            node[last] = _parse_text(text)
-            continue
-        if not isinstance(node, dict):
-            raise SceneFileError(f"{source}: --set {key}: {_path(tokens[:-1])}: not a table")
-        if remove:
-            node.pop(last, None)
-        else:
-            node[last] = _parse_text(text)
-
-
-def _path(tokens: Sequence[str | int]) -> str:
-    out = ""
-    for tok in tokens:
-        out = f"{out}[{tok}]" if isinstance(tok, int) else _join(out, tok)
-    return out
+    try:
+        for item in settings:
+            overrides.apply_to_document(data, overrides.Override.parse(item),
+                                        lambda tokens: _hint_at(data, tokens))
+    except overrides.OverrideError as exc:
+        raise SceneFileError(f"{source}: {exc}") from None
 
 
 # ------------------------------------------------------------------------------------------------
