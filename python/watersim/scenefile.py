@@ -708,9 +708,11 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
 
 
 def _python_name(cls: type) -> str:
-    import watersim
-
-    if getattr(watersim, cls.__name__, None) is cls:
+    """``watersim.NAME`` for a class the package exports, else its full name."""
+    # the package is loaded before any of its modules: read it, do not import it (the package
+    # imports this module)
+    package = sys.modules[__name__.partition(".")[0]]
+    if getattr(package, cls.__name__, None) is cls:
         return f"watersim.{cls.__name__}"
     return f"{cls.__module__}.{cls.__qualname__}"
 

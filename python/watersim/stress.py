@@ -44,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from ._jsonio import write_json_atomic
+from .errors import CliError
 
 __all__ = [
     "GROUPS",
@@ -975,7 +976,6 @@ def cmd_stress(args: Any) -> int:
     """``watersim stress``: run the matrix, write the JSON and the report; exit 0 unless a run
     ended in ``error`` (unstable runs are results, not errors)."""
     from . import __version__
-    from .cli import CliError
 
     specs = quick_matrix() if args.quick else full_matrix()
     if args.group:
