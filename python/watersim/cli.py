@@ -36,7 +36,6 @@ import argparse
 import csv
 import json
 import math
-import os
 import statistics
 import sys
 import time
@@ -64,6 +63,7 @@ from .flume_cases import (
 )
 from .measure import front_error, front_position, water_column_height
 from .output import RunLog, RunOutputs
+from .runrecord import RUN_FIELDS, error_record, rayon_threads, run_record, stop_status
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
@@ -90,23 +90,6 @@ BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d", *DSPH_CASES)
 
 # ------------------------------------------------------------------------------------------------
 # helpers
-
-
-def rayon_threads() -> int:
-    """Number of threads rayon uses: ``RAYON_NUM_THREADS`` if set and positive, else the CPUs
-    this process may run on."""
-    env = os.environ.get("RAYON_NUM_THREADS", "").strip()
-    if env:
-        try:
-            n = int(env)
-        except ValueError:
-            n = 0
-        if n > 0:
-            return n
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
 
 
 def settable_keys(case: str) -> list[str]:
@@ -149,15 +132,6 @@ def _write_json(path: Path, data: dict[str, Any]) -> None:
     write_json_atomic(path, data, indent=2)
 
 
-def _error_record(exc: BaseException) -> dict[str, Any]:
-    """What went wrong, as stored in summary.json."""
-    record: dict[str, Any] = {"type": type(exc).__name__, "message": str(exc)}
-    if isinstance(exc, InstabilityError):
-        for attr in ("kind", "step", "time", "particle", "position"):
-            record[attr] = getattr(exc, attr, None)
-    return record
-
-
 # ------------------------------------------------------------------------------------------------
 # watersim run
 
@@ -181,14 +155,14 @@ def _run_recorded(
     try:
         sim.run_schedule(until, schedule, progress=progress)
     except InstabilityError as exc:
-        status = str(getattr(exc, "kind", "") or "unstable")
-        error = _error_record(exc)
+        status = stop_status(exc)
+        error = error_record(exc)
     except KeyboardInterrupt as exc:
         status = "interrupted"
-        error = _error_record(exc)
+        error = error_record(exc)
     except RuntimeError as exc:
         status = "error"
-        error = _error_record(exc)
+        error = error_record(exc)
     finally:
         if before_close is not None:
             before_close()
@@ -255,28 +229,6 @@ class _Recorder:
             self.say(f"  t = {sim.time:.3f} s, {sim.steps} steps, dt = {sim.dt:.3g} s{front}")
             while self._next_report <= sim.time:
                 self._next_report += self.until / 10.0
-
-
-def _run_summary(
-    case: str, status: str, sim: Any, until: float, wall: float, threads: int
-) -> dict[str, Any]:
-    """The summary.json fields every ``watersim run`` case writes."""
-    return {
-        "case": case,
-        "status": status,
-        "dim": sim.dim,
-        "n_particles": sim.n_particles,
-        "n_fluid": sim.n_fluid,
-        "n_boundary": sim.n_boundary,
-        "steps": sim.steps,
-        "sim_time": sim.time,
-        "until": until,
-        "wall_s": wall,
-        "threads": threads,
-        "state_sha256": sim.state_sha256(),
-        "memory_bytes": sim.memory_bytes(),
-        "version": __version__,
-    }
 
 
 def _run_input(args: argparse.Namespace) -> SceneFile:
@@ -357,7 +309,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     wall = time.perf_counter() - t_start
 
     summary: dict[str, Any] = {
-        **_run_summary(name, status, sim, until, wall, threads),
+        **run_record(RUN_FIELDS, sim, case=name, status=status, until=until, wall_s=wall,
+                     threads=threads),
         **outputs.summary(),
         "builder": builder.as_dict(),
         "scene": sim.scene,
@@ -448,13 +401,14 @@ def _run_flume(
         extras_case = "" if scene.path is not None else name
         analysis.update(case_extras(extras_case, builder, analysis))
     except Exception as exc:  # noqa: BLE001 - the analysis must not lose the run's outputs
-        analysis = {"error": _error_record(exc)}
+        analysis = {"error": error_record(exc)}
     analysis["case"] = name
     analysis["status"] = status
     _write_json(out / "analysis.json", analysis)
 
     summary: dict[str, Any] = {
-        **_run_summary(name, status, sim, until, wall, threads),
+        **run_record(RUN_FIELDS, sim, case=name, status=status, until=until, wall_s=wall,
+                     threads=threads),
         **outputs.summary(),
         "gauges_csv": "gauges.csv",
         "analysis_json": "analysis.json",
@@ -766,7 +720,7 @@ def _bench_record(args: argparse.Namespace, compare: tuple[int, int] | None,
         if compare is not None:
             comparison = _compare_threads(sim, compare, args.steps, args.repeat)
     except InstabilityError as exc:
-        status, error = str(getattr(exc, "kind", "unstable")), _error_record(exc)
+        status, error = str(getattr(exc, "kind", "unstable")), error_record(exc)
     n = sim.n_particles
     # before the pair count, whose sorted copy of the positions is not the simulation's
     peak_rss = _peak_rss_bytes()

@@ -45,6 +45,7 @@ import numpy as np
 
 from ._jsonio import write_json_atomic
 from .errors import CliError
+from .runrecord import STRESS_FIELDS, instability_fields, measure, run_record
 
 __all__ = [
     "GROUPS",
@@ -326,34 +327,15 @@ class _WallLimit(Exception):
 # one run (in a worker process)
 
 
+_BUILT: tuple[str, ...] = ("n_particles", "n_fluid", "dp", "c0")
+"""What a record says of the simulation once it is built."""
+
+
 def _base_record(spec: RunSpec) -> dict[str, Any]:
-    return {
-        "group": spec.group,
-        "name": spec.name,
-        "case": spec.case,
-        "params": dict(spec.params),
-        "until": spec.until,
-        "sample_every": spec.sample_every,
-        "status": "error",
-        "kind": None,
-        "step": None,
-        "time": None,
-        "particle": None,
-        "position": None,
-        "message": None,
-        "max_density_error": None,
-        "energy_drift": None,
-        "energy_growth_max": None,
-        "wall_s": None,
-        "n_particles": None,
-        "n_fluid": None,
-        "steps": None,
-        "sim_time": None,
-        "dp": None,
-        "completed": False,
-        "max_wall_s": spec.max_wall_s,
-        "notes": [],
-    }
+    """A spec's record before its run: an ``error`` until the run says otherwise."""
+    return run_record(STRESS_FIELDS, None, group=spec.group, name=spec.name, case=spec.case,
+                      params=dict(spec.params), until=spec.until, sample_every=spec.sample_every,
+                      status="error", completed=False, max_wall_s=spec.max_wall_s, notes=[])
 
 
 def execute(spec: RunSpec | dict[str, Any]) -> dict[str, Any]:
@@ -379,17 +361,13 @@ def execute(spec: RunSpec | dict[str, Any]) -> dict[str, Any]:
             return _execute_finest(spec, record, start)
         sim, facts = _build(spec)
         record["notes"].extend(facts.get("warnings", []))
-        _describe(record, sim)
+        record.update(measure(sim, _BUILT))
         probe = _Probe(sim, facts, spec.max_wall_s)
         sim.run(spec.until, callback_every=spec.sample_every, callback=probe)
         record["status"] = "stable"
         record["completed"] = True
     except InstabilityError as exc:
-        record["status"] = "failed"
-        record["message"] = str(exc)
-        for attr in ("kind", "step", "time", "particle", "position"):
-            value = getattr(exc, attr, None)
-            record[attr] = list(value) if attr == "position" and value is not None else value
+        record.update(status="failed", message=str(exc), **instability_fields(exc))
     except _WallLimit as exc:
         record["status"] = "timeout"
         record["message"] = str(exc)
@@ -401,8 +379,7 @@ def execute(spec: RunSpec | dict[str, Any]) -> dict[str, Any]:
         record["notes"].append(traceback.format_exc(limit=3).strip().splitlines()[-1])
     record["wall_s"] = time.perf_counter() - start
     if sim is not None:
-        record["steps"] = int(sim.steps)
-        record["sim_time"] = float(sim.time)
+        record.update(measure(sim, ("steps", "sim_time")))
         if probe is not None:
             # the state after a failure is the failed one: its densities count too
             if record["status"] != "error":
@@ -412,13 +389,6 @@ def execute(spec: RunSpec | dict[str, Any]) -> dict[str, Any]:
                     pass
             record.update(probe.results())
     return record
-
-
-def _describe(record: dict[str, Any], sim: Any) -> None:
-    record["n_particles"] = int(sim.n_particles)
-    record["n_fluid"] = int(sim.n_fluid)
-    record["dp"] = float(sim.params()["dp"])
-    record["c0"] = float(sim.params()["c0"])
 
 
 def _execute_finest(spec: RunSpec, record: dict[str, Any], start: float) -> dict[str, Any]:
@@ -464,7 +434,7 @@ def _execute_finest(spec: RunSpec, record: dict[str, Any], start: float) -> dict
         chosen = height / ratios[0]
         record["notes"].append("no candidate fits the budget: ran the coarsest")
     sim = DamBreak(dim=2, dp=chosen, until=spec.until, **p).build()
-    _describe(record, sim)
+    record.update(measure(sim, _BUILT))
     left = spec.max_wall_s - (time.perf_counter() - start)
     probe = _Probe(sim, {"energy_meaningful": True}, max(left, 1.0))
     try:
@@ -475,14 +445,9 @@ def _execute_finest(spec: RunSpec, record: dict[str, Any], start: float) -> dict
         record["status"] = "stable"
         record["notes"].append(f"stopped at its wall budget at t = {sim.time:.4g} s")
     except InstabilityError as exc:
-        record["status"] = "failed"
-        record["message"] = str(exc)
-        for attr in ("kind", "step", "time", "particle", "position"):
-            value = getattr(exc, attr, None)
-            record[attr] = list(value) if attr == "position" and value is not None else value
+        record.update(status="failed", message=str(exc), **instability_fields(exc))
     record["wall_s"] = time.perf_counter() - start
-    record["steps"] = int(sim.steps)
-    record["sim_time"] = float(sim.time)
+    record.update(measure(sim, ("steps", "sim_time")))
     record.update(probe.results())
     return record
 

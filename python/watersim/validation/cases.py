@@ -19,7 +19,6 @@ run-up law; seed 001 (Roselli et al.) for Kimmoun & Branger (2007) breaking.
 from __future__ import annotations
 
 import math
-import os
 import time
 import warnings
 from collections.abc import Callable, Mapping
@@ -43,6 +42,7 @@ from ..flume import (
 )
 from ..flume_cases import BEJI_BATTJES_FILES, FLUME2D_ALPHA, _load_csv, flume_builder
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
+from ..runrecord import VALIDATION_FIELDS, run_record, stop_status
 from ..scenes import DamBreak, Tank, _positive
 from ..simulation import Simulation
 from . import metrics as m
@@ -52,17 +52,6 @@ __all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
 
 # ------------------------------------------------------------------------------------------------
 # running
-
-
-def _threads() -> int:
-    """Threads rayon uses in this process (``RAYON_NUM_THREADS`` or the CPUs available)."""
-    env = os.environ.get("RAYON_NUM_THREADS", "").strip()
-    if env.isdigit() and int(env) > 0:
-        return int(env)
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
 
 
 class _Progress:
@@ -119,7 +108,7 @@ def advance(
     try:
         sim.run(until, callback_every=every, callback=callback)
     except InstabilityError as exc:
-        return str(getattr(exc, "kind", "") or "unstable"), str(exc)
+        return stop_status(exc), str(exc)
     except RuntimeError as exc:
         return "error", f"{type(exc).__name__}: {exc}"
     finally:
@@ -151,24 +140,17 @@ def make_record(
     for key, value in errors.items():
         v = None if value is None else float(value)
         clean[key] = v if v is not None and math.isfinite(v) else None
-    return {
-        "case": case,
-        "resolution": float(resolution),
-        "dp": float(dp),
-        "n_particles": int(particles_total if particles_total is not None
-                           else (sim.n_particles if sim is not None else 0)),
-        "steps": int(steps_total if steps_total is not None
-                     else (sim.steps if sim is not None else 0)),
-        "sim_time": float(sim.time) if sim is not None else 0.0,
-        "wall_s": float(wall_s),
-        "cpu_s": float(cpu_s),
-        "threads": _threads(),
-        "n_sims": n_sims,
-        "errors": clean,
-        "status": status,
-        "message": message,
-        "details": dict(details),
-    }
+    given: dict[str, Any] = {}
+    if particles_total is not None:
+        given["n_particles"] = int(particles_total)
+    if steps_total is not None:
+        given["steps"] = int(steps_total)
+    if sim is None:  # a case that could not be built
+        given = {"n_particles": 0, "steps": 0, "sim_time": 0.0, **given}
+    return run_record(VALIDATION_FIELDS, sim, case=case, resolution=float(resolution),
+                      dp=float(dp), wall_s=float(wall_s), cpu_s=float(cpu_s), n_sims=n_sims,
+                      errors=clean, status=status, message=message, details=dict(details),
+                      **given)
 
 
 class _Clock:
