@@ -1,7 +1,8 @@
 """No import cycle between the modules of python/watersim.
 
 The graph is read from the source (the AST of each module), imports inside functions included:
-a cycle through a deferred import still ties the two modules together.
+a cycle through a deferred import still ties the two modules together. Imports under
+``if TYPE_CHECKING:`` are left out: they never run.
 """
 
 from __future__ import annotations
@@ -34,6 +35,26 @@ def _resolve(module: str, is_package: bool, level: int, name: str | None) -> str
     return ".".join([*base, name] if name else base)
 
 
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def _imports(tree: ast.AST) -> list[ast.Import | ast.ImportFrom]:
+    """The import statements that run (not those under ``if TYPE_CHECKING:``)."""
+    found: list[ast.Import | ast.ImportFrom] = []
+    todo: list[ast.AST] = [tree]
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found.append(node)
+        elif isinstance(node, ast.If) and _is_type_checking(node.test):
+            todo.extend(node.orelse)
+        else:
+            todo.extend(ast.iter_child_nodes(node))
+    return found
+
+
 def import_graph() -> dict[str, set[str]]:
     """Module -> the watersim modules it imports (a package stands for its ``__init__``).
 
@@ -48,16 +69,14 @@ def import_graph() -> dict[str, set[str]]:
     for module, path in files.items():
         is_package = path.name == "__init__.py"
         edges: set[str] = set()
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in _imports(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.Import):
                 targets = [alias.name for alias in node.names]
-            elif isinstance(node, ast.ImportFrom):
+            else:
                 base = _resolve(module, is_package, node.level, node.module)
                 targets = [f"{base}.{alias.name}"
                            if f"{base}.{alias.name}" in modules else base
                            for alias in node.names]
-            else:
-                continue
             edges.update(t for t in targets if t in files and t != module)
         graph[module] = edges
     return graph
