@@ -51,22 +51,13 @@ from .flume import (
     RAMPS,
     SPECTRA,
     SURFACE_METHODS,
-    DampingZone,
     ElevationGauge,
     Flap,
-    Flume,
     FlumeScene,
     IrregularWave,
     MeshBeach,
     Piston,
-    PlaneBeach,
-    ProfileBeach,
-    RegularWave,
     RunupGauge,
-    SolitaryWave,
-    TabulatedMotion,
-    VelocityProbe,
-    VelocityWindow,
 )
 from .scenes import (
     BOUNDARY_MODELS,
@@ -103,22 +94,6 @@ SCENE_TYPES: dict[str, type[SceneBuilder]] = {
     "flume": FlumeScene,
 }
 """The top-level ``type`` of a scene file and the builder it makes."""
-
-TAGS: dict[type, str] = {
-    PlaneBeach: "plane",
-    ProfileBeach: "profile",
-    MeshBeach: "mesh",
-    RegularWave: "regular",
-    IrregularWave: "irregular",
-    SolitaryWave: "solitary",
-    TabulatedMotion: "tabulated",
-    Piston: "piston",
-    Flap: "flap",
-    ElevationGauge: "elevation",
-    VelocityProbe: "velocity",
-    VelocityWindow: "window",
-}
-"""The ``type`` key of a table whose field takes one of several classes."""
 
 CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SceneBuilder, "kernel"): KERNELS,
@@ -235,6 +210,58 @@ def _hints(cls: type) -> dict[str, Any]:
 
 def _required(f: dataclasses.Field[Any]) -> bool:
     return f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+
+
+def _object_fields(cls: type) -> Iterator[tuple[str, Any, bool]]:
+    """``(name, hint, in_sequence)`` of each init field of ``cls`` that holds objects: the hint
+    of the object (of an item, for a sequence of them)."""
+    hints = _hints(cls)
+    for name in _init_fields(cls):
+        hint = hints[name]
+        in_sequence = _is_sequence(hint)
+        if in_sequence:
+            hint = _item_hint(hint, 0)
+        if _dataclasses_in(hint):
+            yield name, hint, in_sequence
+
+
+def _choices(classes: Sequence[type]) -> list[tuple[type, ...]]:
+    """Every field of these classes, and of the objects within them, that takes one of several
+    classes: the classes it takes, in the order of its type hint."""
+    out: list[tuple[type, ...]] = []
+    seen: set[type] = set()
+    todo = list(classes)
+    while todo:
+        cls = todo.pop(0)
+        if cls in seen:
+            continue
+        seen.add(cls)
+        for _name, hint, _in_sequence in _object_fields(cls):
+            members = _dataclasses_in(hint)
+            if len(members) > 1:
+                out.append(tuple(members))
+            todo.extend(members)
+    return out
+
+
+def _tags(choices: Sequence[tuple[type, ...]]) -> dict[type, str]:
+    """Each class of a choice by its tag: the first word of its name, lower case
+    (``PlaneBeach``: ``"plane"``), or its last word where a class before it in the same choice
+    has that first word (``VelocityWindow`` after ``VelocityProbe``: ``"window"``)."""
+    tags: dict[type, str] = {}
+    for members in choices:
+        taken: set[str] = set()
+        for cls in members:
+            words = [w.lower() for w in re.findall(r"[A-Z][a-z0-9]*", cls.__name__)]
+            tag = words[0] if words[0] not in taken else words[-1]
+            taken.add(tag)
+            tags[cls] = tag
+    return tags
+
+
+TAGS: dict[type, str] = _tags(_choices(list(SCENE_TYPES.values())))
+"""The ``type`` key of a table whose field takes one of several classes (a beach, a wave, a
+paddle, a gauge), derived from the builders' type hints by :func:`_tags`."""
 
 
 # ------------------------------------------------------------------------------------------------
@@ -693,18 +720,23 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
            "with a paddle, so a flume refuses it.",
            FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "boundary", "dp",
                                                           "until")) + ("energy_growth_limit",))
-    yield ("`[flume]`", "", Flume, ())
-    for cls in (PlaneBeach, ProfileBeach, MeshBeach):
-        yield (f'`[flume.beach]` with `type = "{TAGS[cls]}"`', "", cls, ())
-    yield ("`[flume.damping]`", "Or `damping = true` / `false`.", DampingZone, ())
-    for cls in (RegularWave, IrregularWave, SolitaryWave, TabulatedMotion):
-        yield (f'`[wave]` with `type = "{TAGS[cls]}"`', "", cls, ())
-    for cls in (Piston, Flap):
-        yield (f'`[paddle]` with `type = "{TAGS[cls]}"`', "", cls, ())
-    for cls in (ElevationGauge, VelocityProbe, VelocityWindow):
-        yield (f'`gauges` item with `type = "{TAGS[cls]}"`', "", cls, ())
-    yield ("`[runup]`", "Or `runup = true` / `false`.", RunupGauge, ())
+    yield from _object_sections(FlumeScene, "")
     yield ("`[output]`", "", OutputOptions, ())
+
+
+def _object_sections(cls: type, path: str) -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
+    """The sections of the objects within ``cls`` (at ``path`` in the file), each followed by
+    those of the objects within it: one per class a field takes."""
+    for name, hint, in_sequence in _object_fields(cls):
+        key = _join(path, name)
+        members = _dataclasses_in(hint)
+        note = f"Or `{name} = true` / `false`." if bool in (_union_args(hint) or ()) else ""
+        for member in members:
+            heading = f"`{key}` item" if in_sequence else f"`[{key}]`"
+            if len(members) > 1:
+                heading += f' with `type = "{TAGS[member]}"`'
+            yield heading, note, member, ()
+            yield from _object_sections(member, key)
 
 
 def _python_name(cls: type) -> str:
