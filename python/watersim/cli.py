@@ -481,7 +481,7 @@ def _dsph_overrides(case: str, settings: list[str]) -> dict[str, str]:
     """The one override a DualSPHysics case takes: ``force_precision`` (the cases run f32 pair
     terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64). Empty
     without ``--set``: the case's own scene then stands as it is."""
-    overrides: dict[str, str] = {}
+    chosen: dict[str, str] = {}
     for item in overrides.parse(settings):
         if item.key != "force_precision":
             raise CliError(
@@ -494,19 +494,19 @@ def _dsph_overrides(case: str, settings: list[str]) -> dict[str, str]:
                 f"--set: force_precision must be one of {', '.join(FORCE_PRECISIONS)}, "
                 f"got {precision!r}"
             )
-        overrides["force_precision"] = precision
-    return overrides
+        chosen["force_precision"] = precision
+    return chosen
 
 
 def _bench_simulation(args: argparse.Namespace) -> Simulation:
     """The simulation ``watersim bench`` times: a built-in dam break or a DualSPHysics case."""
     if args.case in DSPH_CASES:
-        overrides = _dsph_overrides(args.case, args.set or [])
+        chosen = _dsph_overrides(args.case, args.set or [])
         spec = DSPH_CASES[args.case]
         dim = int(dsph_scene(args.case)["dim"])
 
         def build(dp: float) -> Simulation:
-            return Simulation({**dsph_scene(args.case, dp), **overrides})
+            return Simulation({**dsph_scene(args.case, dp), **chosen})
 
         return _scaled_to(build, spec.dp, dim, args.particles) if args.particles else build(spec.dp)
     builder = builder_from_args(args.case, args.set or [])
