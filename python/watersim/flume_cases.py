@@ -103,10 +103,12 @@ class _Settings(Overrides):
     """The ``--set`` values of one flume case: its objects' dotted keys (:meth:`apply`), its
     positive lengths (:meth:`value`) and its numerical parameters (:meth:`numerics`)."""
 
-    def value(self, key: str, default: Any, hint: Any = float,
-              check: Callable[[str, Any], Any] | None = _positive) -> Any:
+    def value(self, key: str, default: Any, hint: Any = float) -> Any:
         """A single case parameter ``key`` (default ``default``); a float must be positive."""
-        return super().value(key, default, hint, check if hint is float else None)
+        value = super().value(key, default, hint)
+        if hint is float and self.was_set(key):
+            _positive(key, value)
+        return value
 
     def numerics(self, **defaults: Any) -> dict[str, Any]:
         """The numerical parameters (:class:`~watersim.SceneBuilder` fields and

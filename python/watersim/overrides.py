@@ -199,17 +199,12 @@ class Overrides:
                 changes[f.name] = self._typed(key, hints[f.name])
         return dataclasses.replace(obj, **changes) if changes else obj  # type: ignore[type-var]
 
-    def value(self, key: str, default: Any, hint: Any = float,
-              check: Callable[[str, Any], Any] | None = None) -> Any:
-        """A single parameter ``key`` of type ``hint`` (``default`` unless set); ``check(key,
-        value)`` refuses a value set."""
+    def value(self, key: str, default: Any, hint: Any = float) -> Any:
+        """A single parameter ``key`` of type ``hint`` (``default`` unless set)."""
         self.keys.append(key)
         if key not in self.items:
             return default
-        value = self._typed(key, hint)
-        if check is not None:
-            check(key, value)
-        return value
+        return self._typed(key, hint)
 
     def fields(self, cls: type, names: Sequence[str], defaults: Mapping[str, Any]
                ) -> dict[str, Any]:
