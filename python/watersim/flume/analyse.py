@@ -1,0 +1,352 @@
+"""The wave analysis of a flume run: wave statistics, envelopes, breaking, run-up, reflection."""
+from __future__ import annotations
+
+import functools
+import itertools
+import math
+import warnings
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from .. import analysis as an
+from .. import wave_theory as wt
+from .waves import IrregularWave, RegularWave, SolitaryWave, TabulatedMotion
+
+if TYPE_CHECKING:
+    from .records import FlumeGauges
+    from .scene import FlumeScene
+
+
+def _f(value: Any) -> float | None:
+    """A JSON-ready float (None for NaN/inf/None)."""
+    if value is None:
+        return None
+    v = float(value)
+    return v if math.isfinite(v) else None
+
+
+def _caught(fn: Callable[[], Any], notes: list[str], what: str) -> Any:
+    """Call ``fn``; turn warnings and ValueErrors into notes (the analysis never raises)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = fn()
+        except ValueError as exc:
+            notes.append(f"{what}: {exc}")
+            result = None
+    for w in caught:
+        notes.append(f"{what}: {w.message}")
+    return result
+
+
+def _best_gauge_set(
+    x: npt.NDArray[np.float64], k: float, size: int
+) -> tuple[tuple[int, ...], float] | None:
+    """The ``size`` gauges (indices into x) best conditioned to separate incident and reflected
+    waves of wavenumber k: the largest ``(n - |sum exp(2ikx)|) / (n + |...|)``."""
+    best: tuple[tuple[int, ...], float] | None = None
+    for combo in itertools.islice(itertools.combinations(range(x.size), size), 5000):
+        s = abs(np.sum(np.exp(2j * k * x[list(combo)])))
+        cond = (size - s) / (size + s)
+        if best is None or cond > best[1] + 1e-12:
+            best = (combo, float(cond))
+    return best
+
+
+def _overturn_summary(overturns: Sequence[tuple[float, an.Overturn]], checks: int
+                      ) -> dict[str, Any]:
+    """JSON-ready summary of the overturned surfaces seen in ``checks`` snapshots."""
+    out: dict[str, Any] = {"checks": checks, "seen": len(overturns)}
+    if overturns:
+        t, first = overturns[0]
+        out["first"] = {"time": t, "x_min": first.x_min, "x_max": first.x_max,
+                        "gap": first.z_gap_top - first.z_gap_bottom}
+        out["x_min"] = min(o.x_min for _, o in overturns)
+        out["x_max"] = max(o.x_max for _, o in overturns)
+        out["columns"] = max(o.n_columns for _, o in overturns)
+    return out
+
+
+def analyse_flume(
+    setup: FlumeScene,
+    gauges: FlumeGauges,
+    t_start: float | None = None,
+    overturns: Sequence[tuple[float, an.Overturn]] = (),
+    overturn_checks: int = 0,
+) -> dict[str, Any]:
+    """Wave analysis of a flume run, as a JSON-ready dict.
+
+    Time windows: each gauge is analysed over its *steady part*, from the wave's arrival
+    (:meth:`FlumeScene.arrival_time`) plus the ramp plus one period, to the end of the record
+    (``t_start``, if given, overrides the start for every gauge). Records are resampled on a
+    uniform grid of ``sample_interval`` and dry samples read the bed level.
+
+    Keys:
+
+    - ``wave``: the wave and paddle (type, period, height, wavelength, stroke, ...).
+    - ``gauges``: per elevation gauge: ``name``, ``x`` (``y``), ``still_depth``, ``window``,
+      and zero-down-crossing ``H_mean``, ``H_max``, ``H_min``, ``H_rms``, ``T_mean``,
+      ``n_waves``, ``crest_mean``, ``trough_mean``, ``mean_level`` (set-up); ``H_target`` and
+      ``H_rel_error`` for regular waves at gauges over the flat floor; ``harmonics`` (first three
+      harmonic amplitudes [m]) for regular waves; ``hm0``, ``tp`` (spectrum) for irregular waves;
+      ``eta_max`` and ``t_max`` for solitary waves and tabulated motions.
+    - ``envelopes``: ``name``, ``x``, ``maximum``, ``minimum``, ``mean``, ``mid_level`` per gauge
+      sorted by x (seed 001 Fig. 8), each over its steady part.
+    - ``breaking`` (with a beach): ``criterion`` H/d > 0.78 from the gauges' waves, ``position``,
+      ``time``, ``wave_height``, ``iribarren`` and ``breaker_type`` from that height, plus
+      ``max_height_position`` / ``max_height`` (where the mean wave height peaks among the
+      gauges over the slope) and ``iribarren_incident`` / ``breaker_type_incident`` from the
+      target height; with ``overturn_checks`` snapshots searched
+      (:attr:`FlumeSimulation.overturns`): ``overturn`` (``checks``, ``seen`` = snapshots
+      with an overturned surface, the ``first`` one's ``time``, ``x_min``, ``x_max``, ``gap``,
+      the ``x_min``/``x_max`` over all, the most ``columns``) and ``breaker_type_observed``:
+      ``"plunging"`` when the surface overturned, else None (spilling, or no breaking
+      resolved).
+    - ``runup`` (with a run-up gauge): per wave (regular: ``mean``, ``std``, ``values``,
+      ``mean_over_H``) or overall (``max``; ``R2`` for irregular waves).
+    - ``reflection`` (regular or irregular waves, 2-3 gauges over the flat floor between the
+      paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``,
+      ``gauges``, ``coefficient``, ``incident_amplitude``, ``reflected_amplitude``.
+    - ``notes``: what could not be computed and why.
+    """
+    notes: list[str] = []
+    wave = setup.wave
+    depth = setup.flume.depth
+    g = setup.gravity
+    law = setup.law
+    T = law.period
+    t, eta, runup = gauges.uniform()
+    end = float(t[-1]) if t.size else 0.0
+    result: dict[str, Any] = {
+        "wave": setup.describe(),
+        "still_water_depth": depth,
+        "record_end": end,
+        "gauges": [],
+        "notes": notes,
+    }
+
+    def window_start(x: float) -> float:
+        if t_start is not None:
+            return float(t_start)
+        extra = T if T is not None else 0.0
+        return law.ramp_duration + setup.arrival_time(x) + extra
+
+    target = wave.height if isinstance(wave, RegularWave) else None
+    per_gauge: list[dict[str, Any]] = []
+    means: list[float | None] = []
+    for j, name in enumerate(gauges.names):
+        x = float(gauges.x[j])
+        entry: dict[str, Any] = {"name": name, "x": x, "still_depth": float(gauges.still_depth[j])}
+        if gauges.y is not None:
+            entry["y"] = float(gauges.y[j])
+        t0 = window_start(x)
+        sel = t >= t0
+        entry["window"] = [t0, end]
+        series = eta[sel, j] if eta.size else np.zeros(0)
+        ts = t[sel]
+        entry["n_samples"] = int(ts.size)
+        mean_h: float | None = None
+        if isinstance(wave, (SolitaryWave, TabulatedMotion)):
+            if eta.size:
+                k = int(np.argmax(eta[:, j]))
+                entry.update(eta_max=_f(eta[k, j]), t_max=_f(t[k]))
+        elif ts.size >= 4 and (T is None or end - t0 >= T):
+            zc = _caught(functools.partial(an.zero_crossing_waves, series, ts), notes, name)
+            if zc is not None:
+                mean_h = float(zc.mean_height)
+                entry.update(
+                    H_mean=_f(zc.mean_height),
+                    H_max=_f(zc.max_height),
+                    H_min=_f(np.min(zc.heights)),
+                    H_rms=_f(np.sqrt(np.mean(zc.heights**2))),
+                    H_significant=_f(zc.significant_height),
+                    T_mean=_f(zc.mean_period),
+                    n_waves=int(zc.heights.size),
+                    crest_mean=_f(np.mean(zc.crest_elevations)),
+                    trough_mean=_f(np.mean(zc.trough_elevations)),
+                )
+            entry["mean_level"] = _f(np.mean(series))
+            if isinstance(wave, RegularWave) and T is not None:
+                harm = _caught(functools.partial(an.harmonic_analysis, series, ts, T, 3),
+                               notes, name)
+                if harm is not None:
+                    entry["harmonics"] = [_f(a) for a in harm.amplitudes]
+                if target is not None and gauges.still_depth[j] >= depth - 1e-9:
+                    entry["H_target"] = target
+                    if mean_h is not None:
+                        entry["H_rel_error"] = (mean_h - target) / target
+            if isinstance(wave, IrregularWave):
+                spec = _caught(functools.partial(an.wave_spectrum, series, ts), notes, name)
+                if spec is not None:
+                    entry.update(hm0=_f(spec.hm0), tp=_f(spec.tp))
+        else:
+            notes.append(
+                f"{name}: the steady part starts at t = {t0:.3g} s, after the record's end "
+                f"({end:.3g} s); run longer for wave statistics"
+            )
+        means.append(mean_h)
+        per_gauge.append(entry)
+    result["gauges"] = per_gauge
+
+    # envelopes over each gauge's steady part
+    if gauges.names and eta.size:
+        env: dict[str, list[Any]] = {"name": [], "x": [], "maximum": [], "minimum": [],
+                                     "mean": [], "mid_level": []}
+        for j in np.argsort(gauges.x, kind="stable"):
+            sel = t >= window_start(float(gauges.x[j]))
+            if np.count_nonzero(sel) < 2:
+                sel = np.ones_like(t, dtype=bool)
+            e = an.water_level_envelopes(eta[sel, j])
+            env["name"].append(gauges.names[j])
+            env["x"].append(float(gauges.x[j]))
+            env["maximum"].append(_f(e.maximum))
+            env["minimum"].append(_f(e.minimum))
+            env["mean"].append(_f(e.mean))
+            env["mid_level"].append(_f(e.mid_level))
+        result["envelopes"] = env
+
+    # breaking
+    slope = setup.beach_slope
+    if setup.flume.beach is not None and gauges.names and eta.size:
+        breaking: dict[str, Any] = {}
+        sel = t >= (law.ramp_duration if t_start is None else t_start)
+        if np.count_nonzero(sel) >= 4:
+            onset = _caught(
+                lambda: an.breaking_onset_from_gauges(
+                    eta[sel], t[sel], gauges.x, gauges.still_depth, slope, T, g
+                ),
+                notes,
+                "breaking",
+            )
+            if onset is not None:
+                breaking.update(
+                    criterion=onset.criterion,
+                    position=onset.position,
+                    time=onset.time,
+                    gauge=gauges.names[onset.index],
+                    wave_height=_f(onset.wave_height),
+                    iribarren=_f(onset.iribarren),
+                    breaker_type=onset.breaker_type,
+                )
+            else:
+                breaking["criterion"] = f"H/d > {wt.MCCOWAN_BREAKING_RATIO}"
+                breaking["position"] = None
+                notes.append("breaking: no gauge recorded a wave with H/d > 0.78")
+        # where the mean wave height peaks, over the gauges on the slope (all wet ones if none)
+        wet = [(j, m) for j, m in enumerate(means)
+               if m is not None and 0.0 < gauges.still_depth[j] < depth - 1e-9]
+        if not wet:
+            wet = [(j, m) for j, m in enumerate(means)
+                   if m is not None and gauges.still_depth[j] > 0.0]
+        if wet:
+            j_max, h_max = max(wet, key=lambda item: item[1])
+            breaking["max_height_position"] = float(gauges.x[j_max])
+            breaking["max_height"] = h_max
+        if slope is not None and T is not None and law.design_height is not None:
+            l0 = float(wt.deep_water_wavelength(T, g))
+            height = wave.height if isinstance(wave, RegularWave) else law.design_height / 1.8
+            xi = float(wt.iribarren(slope, height, l0))
+            breaking["iribarren_incident"] = xi
+            breaking["breaker_type_incident"] = str(wt.breaker_type(xi))
+        breaking["slope"] = slope
+        if overturn_checks:
+            breaking["overturn"] = _overturn_summary(overturns, overturn_checks)
+            breaking["breaker_type_observed"] = "plunging" if overturns else None
+            if not overturns:
+                notes.append(f"breaking: no overturned surface (a jet over air) in "
+                             f"{overturn_checks} snapshots over the beach")
+        result["breaking"] = breaking
+
+    # run-up
+    if runup is not None and t.size:
+        info: dict[str, Any] = {"name": gauges.runup_name}
+        runup_start = law.ramp_duration
+        shore = setup.shoreline
+        if shore is not None:
+            runup_start += setup.arrival_time(shore)
+        if t_start is not None:
+            runup_start = t_start
+        sel = t >= runup_start
+        info["window"] = [runup_start, end]
+        if np.count_nonzero(sel) >= 2:
+            info["max"] = _f(np.max(runup[sel]))
+            if isinstance(wave, RegularWave) and T is not None:
+                per_wave = _caught(
+                    lambda: an.runup_per_wave(runup[sel], t[sel], T, 0.0), notes, "runup"
+                )
+                if per_wave is not None:
+                    info.update(
+                        mean=per_wave.mean,
+                        std=per_wave.std,
+                        n_waves=int(per_wave.values.size),
+                        values=[float(v) for v in per_wave.values],
+                        mean_over_H=per_wave.mean / wave.height,
+                        std_over_H=per_wave.std / wave.height,
+                    )
+            elif isinstance(wave, IrregularWave):
+                info["R2"] = _f(np.percentile(runup[sel], 98.0))
+        else:
+            notes.append("runup: the record ends before the waves reach the shoreline")
+        result["runup"] = info
+
+    # reflection
+    if isinstance(wave, (RegularWave, IrregularWave)) and T is not None and gauges.names:
+        zone = setup.damping_zone
+        limit = min(zone[0] if zone is not None else setup.flume.length, setup.toe)
+        flat = [j for j in range(len(gauges.names))
+                if gauges.still_depth[j] >= depth - 1e-9 and 0.0 < gauges.x[j] < limit
+                and (gauges.y is None or abs(gauges.y[j] - gauges.y[0]) < 1e-12)]
+        knum = 2.0 * math.pi / float(wt.wavelength(T, depth, g))
+        xs = np.unique(gauges.x[flat]) if flat else np.zeros(0)
+        flat = [next(j for j in flat if gauges.x[j] == xv) for xv in xs]
+        chosen: tuple[tuple[int, ...], float] | None = None
+        if len(flat) >= 3:
+            chosen = _best_gauge_set(gauges.x[flat], knum, 3)
+        if len(flat) >= 2 and (chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT):
+            pair = _best_gauge_set(gauges.x[flat], knum, 2)
+            if pair is not None and (chosen is None or pair[1] > chosen[1]):
+                chosen = pair
+        if chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT:
+            result["reflection"] = None
+            notes.append(
+                "reflection: fewer than two gauges over the flat floor with a spacing away from "
+                "multiples of half a wavelength"
+            )
+        else:
+            idx = np.asarray([flat[i] for i in chosen[0]], dtype=np.intp)
+            t0 = max(window_start(float(gauges.x[j])) for j in idx)
+            sel = t >= t0
+            method = an.mansard_funke if len(idx) == 3 else an.goda_suzuki
+            kwargs: dict[str, Any] = (
+                {"period": T} if isinstance(wave, RegularWave)
+                else {"frequency_band": (0.5 / T, 2.0 / T)}
+            )
+            if np.count_nonzero(sel) >= 8 and t[-1] - t0 >= T:
+                refl = _caught(
+                    lambda: method(eta[np.ix_(sel, idx)], t[sel], gauges.x[idx], depth, g=g,
+                                   **kwargs),
+                    notes,
+                    "reflection",
+                )
+            else:
+                refl = None
+                notes.append("reflection: the record is too short after the waves arrive")
+            if refl is not None:
+                valid = refl.valid
+                inc = np.sqrt(np.sum(refl.incident_amplitudes[valid] ** 2))
+                ref = np.sqrt(np.sum(refl.reflected_amplitudes[valid] ** 2))
+                result["reflection"] = {
+                    "method": refl.method,
+                    "gauges": [gauges.names[int(j)] for j in idx],
+                    "coefficient": _f(refl.reflection_coefficient),
+                    "incident_amplitude": _f(inc),
+                    "reflected_amplitude": _f(ref),
+                    "window": [t0, end],
+                }
+            else:
+                result["reflection"] = None
+    return result
+

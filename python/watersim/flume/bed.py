@@ -1,0 +1,242 @@
+"""The bed of the flume: plane, profile and mesh beaches, and the damping zone."""
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from .. import meshbed
+from .._core import SceneError
+from ..scenes import _non_negative, _positive
+from .checks import _TOL, _finite_tuple, _set, _strictly_increasing
+
+
+@dataclass(frozen=True)
+class PlaneBeach:
+    """A plane (uniform) beach rising from the flume floor at ``toe`` with slope ``slope``.
+
+    The bed is ``z = slope (x - toe)`` for x >= toe, up to the top of the tank walls, and flat at
+    that height beyond (if the flume is long enough to get there).
+
+    Attributes:
+        toe: x of the toe, where the slope leaves the floor [m] (from the paddle at rest).
+        slope: tan(beta), rise over run [-] (1/15 for a 1:15 beach).
+    """
+
+    toe: float
+    slope: float
+
+    def __post_init__(self) -> None:
+        _set(self, "toe", _non_negative("beach.toe", self.toe))
+        slope = _positive("beach.slope", self.slope)
+        if slope > 10.0:
+            raise SceneError(f"beach.slope: tan(beta) = {slope:g} is steeper than 10; use a wall")
+        _set(self, "slope", slope)
+
+    def profile(self, length: float, top: float) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] of this beach in a flume of ``length`` with walls ``top``
+        high."""
+        x_top = self.toe + top / self.slope
+        if x_top >= length - _TOL:
+            return [self.toe, length], [0.0, self.slope * (length - self.toe)]
+        return [self.toe, x_top, length], [0.0, top, top]
+
+
+@dataclass(frozen=True)
+class ProfileBeach:
+    """A piecewise-linear bed (bar, composite beach, measured bathymetry): solid below the line
+    through the vertices ``(x[i], z[i])``; the flume floor (z = 0) outside ``[x[0], x[-1]]``.
+
+    Attributes:
+        x: vertex positions along the flume [m], strictly increasing, within the flume.
+        z: bed heights above the flume floor [m], >= 0.
+    """
+
+    x: tuple[float, ...]
+    z: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        x = _finite_tuple("beach.x", self.x, 2)
+        z = _finite_tuple("beach.z", self.z, 2)
+        if len(x) != len(z):
+            raise SceneError(f"beach.z: needs as many values as beach.x ({len(x)}), got {len(z)}")
+        _strictly_increasing("beach.x", x)
+        if min(z) < 0.0:
+            raise SceneError(f"beach.z: bed heights must not be negative, got {min(z):g}")
+        if x[0] < 0.0:
+            raise SceneError(f"beach.x: the profile starts at x = {x[0]:g} m, behind the paddle")
+        _set(self, "x", x)
+        _set(self, "z", z)
+
+    def profile(self, length: float, top: float) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] (the profile as given)."""
+        return list(self.x), list(self.z)
+
+
+@dataclass(frozen=True)
+class MeshBeach:
+    """Bathymetry from a closed triangle mesh (3D flumes only): an STL file, or NumPy vertices
+    and triangles. The solid is the inside of the mesh; the core samples it into wall particles
+    (``layers`` deep below its surface) and fills every lattice site above it with water, as
+    for the other beaches. Anything the core needs is checked when the beach is made: the
+    file is read with meshio, exactly repeated vertices are merged (an STL stores each
+    triangle's corners), and the surface must be closed, consistently oriented with its
+    triangles facing outward (positive enclosed volume), without degenerate triangles; the
+    flume then checks that the mesh lies inside it (x in [0, length], y in [0, width],
+    z >= 0, below the walls) and clear of the paddle's stroke.
+
+    The analysis reads the bed under each gauge from the mesh (its highest surface over the
+    gauge, 0 where the gauge misses it); the shoreline, toe, beach slope and automatic run-up
+    gauge come from the bed profile along the flume's centre line.
+
+    Attributes:
+        path: surface mesh file: STL (ASCII or binary) or any triangle mesh meshio reads (OBJ,
+            PLY, OFF, ...); in a scene file a relative path is from the scene file's folder.
+        vertices: instead of ``path``: the vertices, ``(n, 3)`` rows x, y, z [m] (before
+            ``scale`` and ``offset``).
+        triangles: with ``vertices``: ``(m, 3)`` vertex indices of each triangle, counter-clockwise
+            seen from outside the solid.
+        scale: factor applied to the vertices [m per file unit], e.g. 0.001 for a file in mm.
+        offset: (x, y, z) added to the scaled vertices [m]: where the mesh's origin goes in
+            flume coordinates.
+    """
+
+    path: str | None = None
+    vertices: tuple[tuple[float, ...], ...] | None = None
+    triangles: tuple[tuple[int, ...], ...] | None = None
+    scale: float = 1.0
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    points: npt.NDArray[np.float64] = dataclasses.field(
+        init=False, repr=False, compare=False)
+    """(n, 3) vertices in flume coordinates [m], duplicates merged."""
+    faces: npt.NDArray[np.int64] = dataclasses.field(init=False, repr=False, compare=False)
+    """(m, 3) triangles indexing :attr:`points`."""
+    volume: float = dataclasses.field(init=False, repr=False, compare=False)
+    """Volume enclosed by the mesh [m^3]."""
+
+    def __post_init__(self) -> None:
+        _set(self, "scale", _positive("beach.scale", self.scale))
+        offset = _finite_tuple("beach.offset", self.offset, 3)
+        if len(offset) != 3:
+            raise SceneError(f"beach.offset: needs 3 values (x, y, z), got {len(offset)}")
+        _set(self, "offset", offset)
+        if (self.path is None) == (self.vertices is None and self.triangles is None):
+            raise SceneError("beach.path: give either a mesh file (path) or vertices and "
+                             "triangles, not both nor neither")
+        if self.path is not None:
+            if not isinstance(self.path, (str, os.PathLike)) or not str(self.path).strip():
+                raise SceneError(f"beach.path: expected a file name, got {self.path!r}")
+            _set(self, "path", os.fspath(self.path))
+            raw, tri = meshbed.read_triangle_mesh(self.path, "beach.path")
+        else:
+            if self.vertices is None or self.triangles is None:
+                missing = "triangles" if self.triangles is None else "vertices"
+                raise SceneError(f"beach.{missing}: vertices and triangles go together")
+            raw = self._array("beach.vertices", self.vertices, np.float64)
+            tri_f = self._array("beach.triangles", self.triangles, np.float64)
+            if not np.all(np.isfinite(raw)):
+                raise SceneError("beach.vertices: values must be finite")
+            if not np.all(tri_f == np.round(tri_f)):
+                raise SceneError("beach.triangles: vertex indices must be whole numbers")
+            tri = tri_f.astype(np.int64)
+            if tri.min() < 0 or tri.max() >= raw.shape[0]:
+                raise SceneError(f"beach.triangles: indices must lie in [0, {raw.shape[0] - 1}] "
+                                 f"(the vertices), got {int(tri.min())}..{int(tri.max())}")
+            # stored as plain tuples: a frozen, comparable builder that a scene file can write
+            _set(self, "vertices", tuple(tuple(float(v) for v in row) for row in raw))
+            _set(self, "triangles", tuple(tuple(int(i) for i in row) for row in tri))
+        pts = raw * self.scale + np.asarray(offset)
+        pts, tri = meshbed.merge_duplicate_vertices(pts, tri)
+        _set(self, "volume", meshbed.check_closed_mesh(pts, tri, self.source_field))
+        pts.setflags(write=False)
+        tri.setflags(write=False)
+        _set(self, "points", pts)
+        _set(self, "faces", tri)
+
+    @staticmethod
+    def _array(name: str, values: Any, dtype: type) -> npt.NDArray[Any]:
+        try:
+            arr: npt.NDArray[Any] = np.asarray(values, dtype=dtype)
+        except (TypeError, ValueError):
+            raise SceneError(f"{name}: expected rows of 3 numbers") from None
+        if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:
+            raise SceneError(f"{name}: expected rows of 3 numbers, got shape {arr.shape}")
+        return arr
+
+    @property
+    def source_field(self) -> str:
+        """The field that gave the mesh (``beach.path`` or ``beach.vertices``), for messages."""
+        return "beach.path" if self.path is not None else "beach.vertices"
+
+    @property
+    def bounds(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """``(min, max)`` corners of the mesh's bounding box [m], flume coordinates."""
+        return self.points.min(axis=0), self.points.max(axis=0)
+
+    def bed(self, x: npt.ArrayLike, y: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Bed height above the floor under ``(x, y)`` [m]: the mesh's highest surface there,
+        0 where the vertical line misses the mesh."""
+        z = meshbed.surface_height(self.points, self.faces, x, y)
+        return np.maximum(np.nan_to_num(z, nan=0.0), 0.0)
+
+    def profile(self, length: float, top: float, y: float | None = None
+                ) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] along the line ``y`` (the centre line of a flume as wide
+        as the mesh when None) from x = 0 to ``length``; ``top`` is not used (the mesh has its
+        own height)."""
+        lo, hi = self.bounds
+        yy = 0.5 * (lo[1] + hi[1]) if y is None else float(y)
+        return meshbed.profile_along_line(self.points, self.faces, yy, 0.0, length)
+
+    def to_core(self) -> dict[str, Any]:
+        """The core's obstacle JSON (``shape = "mesh"``)."""
+        return {"shape": "mesh", "vertices": self.points.tolist(),
+                "triangles": self.faces.tolist()}
+
+
+Beach = PlaneBeach | ProfileBeach | MeshBeach
+
+
+def _bed(px: Sequence[float], pz: Sequence[float], x: npt.ArrayLike) -> npt.NDArray[np.float64]:
+    """Bed height [m] at ``x`` for a profile (the floor, 0, outside it or without a profile)."""
+    if len(px) == 0:
+        return np.zeros_like(np.asarray(x, dtype=np.float64))
+    return np.interp(np.asarray(x, dtype=np.float64), px, pz, left=0.0, right=0.0)
+
+
+def _shoreline_segment(
+    px: Sequence[float], pz: Sequence[float], level: float
+) -> tuple[float, float, float, float] | None:
+    """The last profile segment crossing ``level`` upwards: ``(x0, z0, x1, z1)``, or None."""
+    for i in range(len(px) - 2, -1, -1):
+        if pz[i] <= level < pz[i + 1]:
+            return px[i], pz[i], px[i + 1], pz[i + 1]
+    return None
+
+
+
+@dataclass(frozen=True)
+class DampingZone:
+    """Velocity damping zone at the far end of the flume (DualSPHysics form): after each step the
+    fluid velocity is scaled by ``1 - dt * strength * s^2``, ``s`` rising from 0 at the zone's
+    start to 1 at the far wall.
+
+    Attributes:
+        length: zone length from the far wall [m]; ``None``: one wavelength of the wave (its
+            peak period for irregular waves), or a quarter of the flume when no period is known.
+        strength: largest velocity reduction rate [1/s].
+    """
+
+    length: float | None = None
+    strength: float = 10.0
+
+    def __post_init__(self) -> None:
+        if self.length is not None:
+            _set(self, "length", _positive("damping.length", self.length))
+        _set(self, "strength", _non_negative("damping.strength", self.strength))
+

@@ -1,0 +1,179 @@
+"""The gauges of a flume: surface elevation, velocity probes and windows, run-up."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .._core import SceneError
+from ..scenes import _choice, _integer, _number, _positive
+from .checks import _finite_tuple, _optional_name, _set
+
+SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
+"""Free-surface methods of elevation and run-up gauges (DESIGN.md section 4): ``"kernel"``, the
+highest point where the fluid's kernel volume sum fills half the space the walls leave free
+(``S_fluid / (1 - S_wall) >= 0.5``: 0.5 away from walls, and right next to a side wall or bed
+too); ``"particle"``, the highest fluid particle
+near the gauge line (seed 001's method)."""
+
+
+RUNUP_OFFSET_DP = 1.5
+"""Distance of the automatic run-up gauge line above the beach surface, in dp (normal to it)."""
+
+
+
+@dataclass(frozen=True)
+class ElevationGauge:
+    """Free-surface elevation on the vertical line through (x[, y]).
+
+    Attributes:
+        x: position along the flume [m].
+        y: position across (3D only) [m]; ``None``: the flume's centre line.
+        method: ``"kernel"`` or ``"particle"`` (see :data:`SURFACE_METHODS`).
+        name: column name; default ``eta_x{x:.3f}`` (``_y{y:.3f}`` added in 3D).
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    x: float
+    y: float | None = None
+    method: str = "kernel"
+    name: str | None = None
+    interval: float | None = None
+
+    def __post_init__(self) -> None:
+        _set(self, "x", _number("gauge.x", self.x))
+        if self.y is not None:
+            _set(self, "y", _number("gauge.y", self.y))
+        _choice("gauge.method", self.method, SURFACE_METHODS)
+        _optional_name("gauge.name", self.name)
+        if self.interval is not None:
+            _set(self, "interval", _positive("gauge.interval", self.interval))
+
+
+@dataclass(frozen=True)
+class VelocityProbe:
+    """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
+
+    Attributes:
+        points: the points, in flume coordinates (z from the floor).
+        name: record name; default ``velocity{i}``.
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    points: tuple[tuple[float, ...], ...]
+    name: str | None = None
+    interval: float | None = None
+
+    def __post_init__(self) -> None:
+        try:
+            rows = [tuple(p) for p in self.points]
+        except TypeError:
+            raise SceneError(f"gauge.points: expected a sequence of points, got "
+                             f"{self.points!r}") from None
+        if not rows:
+            raise SceneError("gauge.points: needs at least one point")
+        pts = tuple(_finite_tuple(f"gauge.points[{i}]", p, 2) for i, p in enumerate(rows))
+        if len({len(p) for p in pts}) != 1 or len(pts[0]) not in (2, 3):
+            raise SceneError("gauge.points: every point needs 2 (x, z) or 3 (x, y, z) coordinates")
+        _set(self, "points", pts)
+        _optional_name("gauge.name", self.name)
+        if self.interval is not None:
+            _set(self, "interval", _positive("gauge.interval", self.interval))
+
+
+@dataclass(frozen=True)
+class VelocityWindow:
+    """PIV-like window: velocity on a regular grid of ``n`` points per axis over ``[min, max]``.
+
+    In 2D ``min``, ``max`` are (x, z) and ``n`` is (nx, nz); in 3D (x, y, z) and (nx, ny, nz)
+    (one point along y gives a vertical plane). The record's velocity has shape
+    ``(n_samples, *reversed(n), dim)``: z slowest, x fastest.
+
+    Attributes:
+        min, max: opposite corners [m], flume coordinates.
+        n: points per axis (>= 1).
+        name: record name; default ``window{i}``.
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    min: tuple[float, ...]
+    max: tuple[float, ...]
+    n: tuple[int, ...]
+    name: str | None = None
+    interval: float | None = None
+
+    def __post_init__(self) -> None:
+        lo = _finite_tuple("gauge.min", self.min, 2)
+        hi = _finite_tuple("gauge.max", self.max, 2)
+        if len(lo) != len(hi) or len(lo) not in (2, 3):
+            raise SceneError("gauge.max: min and max need 2 (x, z) or 3 (x, y, z) coordinates")
+        if any(b < a for a, b in zip(lo, hi, strict=True)):
+            raise SceneError(f"gauge.max: must not be below min on any axis ({lo} -> {hi})")
+        counts = tuple(self.n) if not isinstance(self.n, (str, bytes)) else ()
+        if len(counts) != len(lo):
+            raise SceneError(f"gauge.n: needs {len(lo)} counts, got {self.n!r}")
+        for i, c in enumerate(counts):
+            _integer(f"gauge.n[{i}]", c, 1)
+        _set(self, "min", lo)
+        _set(self, "max", hi)
+        _set(self, "n", tuple(int(c) for c in counts))
+        _optional_name("gauge.name", self.name)
+        if self.interval is not None:
+            _set(self, "interval", _positive("gauge.interval", self.interval))
+
+
+@dataclass(frozen=True)
+class RunupGauge:
+    """Run-up: the highest wet point along a segment laid just above the beach (``end`` uphill);
+    records its vertical position.
+
+    Attributes:
+        start, end: the segment's ends [m], flume coordinates; ``None`` (both): laid automatically
+            along the beach, ``1.5 dp`` above its surface, from below the lowest run-down up to
+            the top of the slope.
+        method: ``"kernel"`` or ``"particle"``.
+        name: record name (default ``"runup"``).
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    start: tuple[float, ...] | None = None
+    end: tuple[float, ...] | None = None
+    method: str = "kernel"
+    name: str = "runup"
+    interval: float | None = None
+
+    def __post_init__(self) -> None:
+        if (self.start is None) != (self.end is None):
+            raise SceneError("runup.end: give both start and end, or neither (automatic)")
+        if self.start is not None and self.end is not None:
+            a = _finite_tuple("runup.start", self.start, 2)
+            b = _finite_tuple("runup.end", self.end, 2)
+            if len(a) != len(b) or len(a) not in (2, 3):
+                raise SceneError("runup.end: start and end need 2 (x, z) or 3 (x, y, z) values")
+            if a == b:
+                raise SceneError("runup.end: must differ from start")
+            if b[-1] <= a[-1]:
+                raise SceneError("runup.end: must be uphill of start (higher z)")
+            _set(self, "start", a)
+            _set(self, "end", b)
+        _choice("runup.method", self.method, SURFACE_METHODS)
+        _optional_name("runup.name", self.name)
+        if self.interval is not None:
+            _set(self, "interval", _positive("runup.interval", self.interval))
+
+
+Gauge = ElevationGauge | VelocityProbe | VelocityWindow
+
+
+def elevation_gauges_between(
+    x_start: float, x_end: float, spacing: float, method: str = "kernel"
+) -> list[ElevationGauge]:
+    """Elevation gauges every ``spacing`` metres from ``x_start`` to ``x_end`` (both included
+    when they fall on the spacing): a line of gauges for envelopes and breaking position."""
+    a = _number("x_start", x_start)
+    b = _number("x_end", x_end)
+    s = _positive("spacing", spacing)
+    if b < a:
+        raise SceneError(f"x_end: must not be before x_start ({a:g} -> {b:g})")
+    n = math.floor((b - a) / s + 1e-9)
+    return [ElevationGauge(round(a + i * s, 9), method=method) for i in range(n + 1)]
+

@@ -1,0 +1,131 @@
+"""The wave-makers (piston, flap) and the resolved paddle law the core runs."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+import numpy.typing as npt
+
+from .. import wave_theory as wt
+from .._core import SceneError
+from ..scenes import _choice, _non_negative
+from .checks import _set
+
+RAMPS: tuple[str, ...] = ("linear", "tanh")
+"""Start-up ramp shapes of harmonic paddle laws."""
+
+
+
+@dataclass(frozen=True)
+class Piston:
+    """A piston wave-maker: the paddle translates along x.
+
+    Attributes:
+        order: 1 (Biesel) or 2 (Madsen 1971 second-order correction, regular waves only).
+        ramp_periods: start-up ramp length in wave periods (peak periods for irregular waves);
+            0 for none. Tabulated and solitary motions have no ramp.
+        ramp: ``"linear"`` (``min(1, t / T_r)``) or ``"tanh"`` (``tanh(4 t / T_r)``).
+    """
+
+    order: int = 1
+    ramp_periods: float = 2.0
+    ramp: str = "linear"
+
+    def __post_init__(self) -> None:
+        if isinstance(self.order, bool) or self.order not in (1, 2):
+            raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
+        _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
+        _choice("paddle.ramp", self.ramp, RAMPS)
+
+
+@dataclass(frozen=True)
+class Flap:
+    """A flap wave-maker: the paddle rotates about a horizontal hinge at height ``hinge_z``;
+    below the hinge it is a fixed wall. Its displacement X is set at the still-water level
+    (``theta = atan(X / (depth - hinge_z))``). First-order generation only.
+
+    Attributes:
+        hinge_z: hinge height above the floor [m]; ``None``: on the floor (a bottom-hinged flap).
+        ramp_periods: start-up ramp length in wave periods; 0 for none.
+        ramp: ``"linear"`` or ``"tanh"``.
+    """
+
+    hinge_z: float | None = None
+    ramp_periods: float = 2.0
+    ramp: str = "linear"
+
+    order: ClassVar[int] = 1
+
+    def __post_init__(self) -> None:
+        if self.hinge_z is not None:
+            _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
+        _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
+        _choice("paddle.ramp", self.ramp, RAMPS)
+
+
+Paddle = Piston | Flap
+
+
+def flap_height_to_stroke_hinged(
+    k: npt.ArrayLike, depth: float, hinge_height: float
+) -> npt.NDArray[np.float64]:
+    """Biesel transfer function H/S of a flap hinged ``hinge_height`` above the bed [-].
+
+    Linear wave-maker theory (Biesel & Suquet 1951; Dean & Dalrymple 1991, ch. 6): for a paddle
+    whose horizontal displacement is ``(S/2) f(z)`` (z up from the bed, f = 1 at the surface),
+    ``H/S = 4 sinh(kd) / (sinh 2kd + 2kd) * k int_0^d f(z) cosh(kz) dz``. With the flap's
+    ``f = (z - l)/(d - l)`` above the hinge l and 0 below, the integral is
+    ``[k(d - l) sinh kd - cosh kd + cosh kl] / (k (d - l))``. For l = 0 this is the bottom-hinged
+    flap of :func:`watersim.wave_theory.flap_height_to_stroke`, which is used then; f = 1 gives
+    the piston.
+
+    Args:
+        k: wavenumber [rad/m]; depth: still-water depth d [m]; hinge_height: l, 0 <= l < d [m].
+    """
+    kk = np.asarray(k, dtype=np.float64)
+    if hinge_height == 0.0:
+        return np.asarray(wt.flap_height_to_stroke(kk, depth), dtype=np.float64)
+    kd = kk * depth
+    span = kk * (depth - hinge_height)
+    integral = (span * np.sinh(kd) - np.cosh(kd) + np.cosh(kk * hinge_height)) / span
+    return np.asarray(4.0 * np.sinh(kd) / (np.sinh(2.0 * kd) + 2.0 * kd) * integral)
+
+
+
+@dataclass(frozen=True)
+class _Law:
+    """A resolved paddle law: the core's JSON and what the analysis needs."""
+
+    law: dict[str, Any]
+    backward: float
+    forward: float
+    ramp_duration: float
+    period: float | None
+    design_height: float | None
+    stroke: float | None = None
+    second_order_amplitude: float | None = None
+    duration: float | None = None
+
+
+def _harmonic_law(
+    components: list[list[float]], bound: float, paddle: Paddle, period: float, **extra: Any
+) -> _Law:
+    """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over ``components``
+    ``[a, omega, phase]`` with the paddle's start-up ramp over ``ramp_periods`` ``period`` [s];
+    ``bound`` [m] is the largest excursion either way, ``extra`` the other :class:`_Law` fields."""
+    ramp = paddle.ramp_periods * period
+    return _Law(
+        law={
+            "type": "harmonic",
+            "components": components,
+            "ramp_duration": ramp,
+            "ramp_shape": paddle.ramp,
+        },
+        backward=bound,
+        forward=bound,
+        ramp_duration=ramp,
+        period=period,
+        **extra,
+    )
+

@@ -1,0 +1,953 @@
+"""A flume and one run in it: the checked scene, its derived quantities and the core scene."""
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+import numpy.typing as npt
+
+from .. import wave_theory as wt
+from .._core import SceneError
+from ..scenes import SceneBuilder, _positive
+from .bed import Beach, DampingZone, MeshBeach, PlaneBeach, ProfileBeach, _bed, _shoreline_segment
+from .checks import _TOL, _set
+from .gauges import (
+    RUNUP_OFFSET_DP,
+    ElevationGauge,
+    Gauge,
+    RunupGauge,
+    VelocityProbe,
+    VelocityWindow,
+)
+from .lattice import MAX_PARTICLES, _lattice_error, _whole, lattice_dp
+from .paddles import Flap, Paddle, Piston, _harmonic_law, _Law, flap_height_to_stroke_hinged
+from .simulation import FlumeSimulation
+from .waves import (
+    SOLITARY_MAX_H_OVER_D,
+    SPECTRA,
+    IrregularWave,
+    RegularWave,
+    SolitaryWave,
+    TabulatedMotion,
+    Wave,
+)
+
+
+@dataclass(frozen=True)
+class Flume:
+    """A wave flume: its length, still-water depth, beach, and (3D) width.
+
+    Attributes:
+        length: from the paddle face at rest (x = 0) to the far wall [m].
+        depth: still-water depth over the flat floor [m]; the SWL is z = depth.
+        beach: a :class:`PlaneBeach`, a :class:`ProfileBeach`, a :class:`MeshBeach` (3D only),
+            or ``None`` (flat floor).
+        width: inner width [m] for a 3D flume (side walls at y = 0 and y = width); ``None`` in 2D.
+        height: height of the tank walls above the floor [m]; ``None``: chosen from the wave
+            (``depth + max(depth / 2, 3 H)``, at least the highest bed point).
+        damping: a :class:`DampingZone`; ``True`` for the default zone; ``False`` for none;
+            ``None`` (default): a default zone when there is no beach, none with a beach.
+    """
+
+    length: float
+    depth: float
+    beach: Beach | None = None
+    width: float | None = None
+    height: float | None = None
+    damping: DampingZone | bool | None = None
+
+    def __post_init__(self) -> None:
+        length = _positive("length", self.length)
+        depth = _positive("depth", self.depth)
+        _set(self, "length", length)
+        _set(self, "depth", depth)
+        if self.width is not None:
+            _set(self, "width", _positive("width", self.width))
+        if self.height is not None:
+            height = _positive("height", self.height)
+            if height <= depth:
+                raise SceneError(
+                    f"height: the walls ({height:g} m) must be higher than the water "
+                    f"(depth = {depth:g} m)"
+                )
+            _set(self, "height", height)
+        if self.damping is not None and not isinstance(self.damping, (bool, DampingZone)):
+            raise SceneError(f"damping: expected a DampingZone, True, False or None, got "
+                             f"{self.damping!r}")
+        if isinstance(self.damping, DampingZone) and self.damping.length is not None:
+            if self.damping.length >= length:
+                raise SceneError(
+                    f"damping.length: the zone ({self.damping.length:g} m) is as long as the "
+                    f"flume (length = {length:g} m)"
+                )
+        beach = self.beach
+        if beach is None:
+            return
+        if isinstance(beach, PlaneBeach):
+            if beach.toe >= length:
+                raise SceneError(
+                    f"beach.toe: the toe at x = {beach.toe:g} m lies beyond the flume "
+                    f"(length = {length:g} m)"
+                )
+        elif isinstance(beach, ProfileBeach):
+            if beach.x[-1] > length + _TOL:
+                raise SceneError(
+                    f"beach.x: the profile ends at x = {beach.x[-1]:g} m, beyond the flume "
+                    f"(length = {length:g} m)"
+                )
+            if self.height is not None and max(beach.z) > self.height + _TOL:
+                raise SceneError(
+                    f"beach.z: the bed rises to {max(beach.z):g} m, above the walls "
+                    f"(height = {self.height:g} m)"
+                )
+        elif isinstance(beach, MeshBeach):
+            self._check_mesh(beach)
+        else:
+            raise SceneError(
+                f"beach: expected a PlaneBeach, a ProfileBeach, a MeshBeach or None, got {beach!r}"
+            )
+
+    def _check_mesh(self, beach: MeshBeach) -> None:
+        """A mesh beach needs a 3D flume and must lie inside it (the core would clip what lies
+        outside the tank without a word)."""
+        field = beach.source_field
+        if self.width is None:
+            raise SceneError("beach: a MeshBeach (triangle mesh) needs a 3D flume; give the "
+                             "flume a width")
+        lo, hi = beach.bounds
+        tol = 1e-6 * max(self.length, self.width, 1.0)  # float32 STL coordinates
+        limits = [("x", 0, 0.0, self.length, f"the flume's length [0, {self.length:g}] m"),
+                  ("y", 1, 0.0, self.width, f"the flume's width [0, {self.width:g}] m"),
+                  ("z", 2, 0.0, math.inf, "above the floor (z >= 0)")]
+        if self.height is not None:
+            limits[2] = ("z", 2, 0.0, self.height, f"between the floor and the top of the walls "
+                         f"[0, {self.height:g}] m")
+        for name, k, a, b, where in limits:
+            if lo[k] < a - tol or hi[k] > b + tol:
+                raise SceneError(
+                    f"{field}: the mesh spans {name} = [{lo[k]:.6g}, {hi[k]:.6g}] m; it must lie "
+                    f"within {where} (move it with beach.offset, scale it with beach.scale)"
+                )
+
+    @property
+    def dim(self) -> int:
+        """2 without a width, 3 with one."""
+        return 2 if self.width is None else 3
+
+    def damping_enabled(self) -> bool:
+        """Whether the flume has a damping zone (default: only without a beach)."""
+        if self.damping is None:
+            return self.beach is None
+        return self.damping is not False
+
+    def scene(self, wave: Wave, **kwargs: Any) -> FlumeScene:
+        """The full, checked scene builder of a run in this flume (see :class:`FlumeScene` for
+        the keyword arguments: ``paddle``, ``dp``, ``gauges``, ``runup``, ``until``,
+        ``sample_interval`` and every numerical parameter of :class:`~watersim.SceneBuilder`)."""
+        return FlumeScene(flume=self, wave=wave, **kwargs)
+
+    def simulation(self, wave: Wave, **kwargs: Any) -> FlumeSimulation:
+        """Build the particles of a run in this flume: a ready :class:`FlumeSimulation`.
+
+        Same arguments as :meth:`scene`.
+        """
+        return self.scene(wave, **kwargs).build()
+
+
+
+@dataclass(frozen=True, kw_only=True)
+class FlumeScene(SceneBuilder):
+    """Everything about one flume run: the flume, the wave, the paddle, the gauges and every
+    numerical parameter (those of :class:`~watersim.SceneBuilder`).
+
+    Build it with :meth:`Flume.scene` (or :meth:`Flume.simulation`, which also builds the
+    particles). ``dim`` follows the flume (3 with a width). Defaults filled in when the scene is
+    created: ``dp = min(depth / 15, H / 4)`` (H the wave's height, ``1.8 hs`` for irregular
+    waves; depth / 15 for a tabulated motion; in 3D at most 8 layers deep), snapped to
+    ``depth / round(depth / dp)`` so that the water is a whole number of particle layers deep
+    (:func:`lattice_dp`; a given ``dp`` that is not is refused, see :meth:`_check_lattice`),
+    ``sample_interval = T / 40`` (at most 0.05 s;
+    ``sqrt(depth / g) / 4`` for solitary waves, 0.02 s for a tabulated motion), ``until`` long
+    enough for the wave to reach the last gauge (or the shoreline) after the ramp and ten more
+    periods there (for irregular waves fifty peak periods, for a solitary wave the time to cross
+    the flume and come back, for a tabulated motion the table's end plus one crossing).
+
+    Attributes:
+        flume: the :class:`Flume`.
+        wave: :class:`RegularWave`, :class:`IrregularWave`, :class:`SolitaryWave` or
+            :class:`TabulatedMotion`.
+        paddle: :class:`Piston` (default) or :class:`Flap`.
+        gauges: :class:`ElevationGauge`, :class:`VelocityProbe` and :class:`VelocityWindow`
+            objects.
+        runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
+            ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
+        sample_interval: default sampling interval of the gauges [s].
+        energy_growth_limit: not used: the core's energy monitor skips scenes with a paddle
+            (``density_band`` and ``lost_fraction_limit`` do apply); must stay unset.
+
+    Numerical defaults differ from the dam break's in three fields, all for wave propagation:
+
+    - ``coefh = 1.5`` in 2D, 1.2 in 3D (``h = 2.1 dp`` in both; DualSPHysics' 3D wave cases
+      use 1.2): at coarse resolution it carries a regular wave much further than
+      ``coefh = 1`` (measured here in 2D, d = 0.3 m, T = 1.2 s, H = 0.06 m, dp = 0.02 m,
+      H/dp = 3: wave height at one wavelength 92 % of the target against 79 % with
+      ``coefh = 1``; ``coefh = 2`` gives the same 92 % at twice the cost). The time step grows
+      with h, which pays back most of the extra neighbours in 2D.
+    - ``alpha = 0.01``: the artificial viscosity of seed 001 (Roselli et al., Table 2) and of
+      DualSPHysics wave cases (Altomare et al. 2017); waves are less damped than with 0.02.
+    - ``boundary = "adami"`` (Adami et al. 2012; the dam break keeps DBC): a DBC wall's
+      density remembers the water it has seen, so a crest cannot climb a wall that started
+      dry and the waterline on a wall is pumped down (docs/wave-flume.md, "Walls that
+      remember"). Measured: flume3d's wave at a side wall had 25 % of its height with DBC and
+      the same height as on the centre line with Adami's walls; flume2d at H/dp = 5 keeps
+      98 % / 95 % / 92 % of the height at 1 / 2 / 3 L instead of 94 % / 91 % / 88 %.
+    """
+
+    _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
+        2: {"coefh": 1.5},
+        3: {"coefh": 1.2},
+    }
+    _ENERGY_MONITOR: ClassVar[bool] = False  # every flume has a paddle
+
+    dim: int | None = None  # type: ignore[assignment]
+    coefh: float | None = None  # type: ignore[assignment]
+    alpha: float = 0.01
+    boundary: str = "adami"
+    energy_growth_limit: float | None = None  # type: ignore[assignment]
+    flume: Flume
+    wave: Wave
+    paddle: Paddle = dataclasses.field(default_factory=Piston)
+    gauges: Sequence[Gauge] = ()
+    runup: bool | RunupGauge | None = None
+    sample_interval: float | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.flume, Flume):
+            raise SceneError(f"flume: expected a Flume, got {self.flume!r}")
+        if not isinstance(self.wave, (RegularWave, IrregularWave, SolitaryWave, TabulatedMotion)):
+            raise SceneError(
+                "wave: expected a RegularWave, IrregularWave, SolitaryWave or TabulatedMotion, "
+                f"got {self.wave!r}"
+            )
+        if not isinstance(self.paddle, (Piston, Flap)):
+            raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
+        if isinstance(self.gauges, (ElevationGauge, VelocityProbe, VelocityWindow)):
+            _set(self, "gauges", (self.gauges,))
+        try:
+            gauges = tuple(self.gauges)
+        except TypeError:
+            raise SceneError(
+                f"gauges: expected a sequence of gauges, got {self.gauges!r}"
+            ) from None
+        for i, g in enumerate(gauges):
+            if not isinstance(g, (ElevationGauge, VelocityProbe, VelocityWindow)):
+                raise SceneError(
+                    f"gauges[{i}]: expected an ElevationGauge, VelocityProbe or VelocityWindow, "
+                    f"got {g!r}"
+                )
+        _set(self, "gauges", gauges)
+        if self.runup is not None and not isinstance(self.runup, (bool, RunupGauge)):
+            raise SceneError(f"runup: expected True, False, None or a RunupGauge, got "
+                             f"{self.runup!r}")
+        if self.dim is None:
+            _set(self, "dim", self.flume.dim)
+        elif self.dim != self.flume.dim:
+            raise SceneError(
+                f"dim: {self.dim!r} does not match the flume ({self.flume.dim}D: width = "
+                f"{self.flume.width!r})"
+            )
+        _positive("gravity", self.gravity)
+        if self.dp is not None:
+            _positive("dp", self.dp)
+        if self.sample_interval is not None:
+            _set(self, "sample_interval", _positive("sample_interval", self.sample_interval))
+        if self.until is not None:
+            _positive("until", self.until)
+        self._check_wave_and_paddle()
+        if self.dp is None:
+            _set(self, "dp", self._default_dp())
+        if self.sample_interval is None:
+            _set(self, "sample_interval", self._default_sample_interval())
+        if self.until is None:
+            _set(self, "until", self._default_until())
+        super().__post_init__()
+        if isinstance(self.wave, RegularWave):
+            wt.warn_if_invalid_wave(
+                self.wave.height,
+                self.wave.period,
+                self.flume.depth,
+                self.paddle.order,
+                "piston" if isinstance(self.paddle, Piston) else "flap",
+                self.gravity,
+            )
+
+    # -- checks ---------------------------------------------------------------------------------
+
+    def _check_wave_and_paddle(self) -> None:
+        """Combinations of wave and paddle the generation theory does not cover."""
+        wave, paddle, depth = self.wave, self.paddle, self.flume.depth
+        if isinstance(paddle, Flap) and paddle.hinge_z is not None and paddle.hinge_z >= depth:
+            raise SceneError(
+                f"paddle.hinge_z: the hinge ({paddle.hinge_z:g} m) must be below the still-water "
+                f"level (depth = {depth:g} m)"
+            )
+        if isinstance(paddle, Piston) and paddle.order == 2 and not isinstance(wave, RegularWave):
+            raise SceneError(
+                "paddle.order: second-order (Madsen 1971) generation is for regular waves only; "
+                "use order=1"
+            )
+        if isinstance(wave, SolitaryWave) and not isinstance(paddle, Piston):
+            raise SceneError("paddle: a solitary wave (Goring 1978) needs a Piston")
+        if isinstance(wave, SolitaryWave) and wave.height > SOLITARY_MAX_H_OVER_D * depth:
+            raise SceneError(
+                f"wave.height: H/d = {wave.height / depth:.3g} is above the highest solitary "
+                f"wave, H/d = {SOLITARY_MAX_H_OVER_D} (Longuet-Higgins & Fenton 1974)"
+            )
+
+    def _validate_geometry(self) -> None:
+        flume = self.flume
+        dp = _positive("dp", self.dp)
+        if flume.dim != self.dim:
+            raise SceneError(f"dim: {self.dim!r} does not match the flume ({flume.dim}D)")
+        _positive("sample_interval", self.sample_interval)
+        if flume.depth < 2.0 * dp * (1.0 - 1e-9):
+            raise SceneError(
+                f"dp: {dp:g} m leaves fewer than 2 particles across the water depth "
+                f"(depth = {flume.depth:g} m)"
+            )
+        if flume.width is not None and flume.width < 2.0 * dp * (1.0 - 1e-9):
+            raise SceneError(
+                f"dp: {dp:g} m leaves fewer than 2 particles across the flume width "
+                f"(width = {flume.width:g} m)"
+            )
+        if flume.length < 4.0 * dp:
+            raise SceneError(f"dp: {dp:g} m is too coarse for a flume {flume.length:g} m long")
+        self._check_lattice()
+        across = 1.0 if flume.width is None else flume.width / dp
+        n_fluid = flume.length / dp * flume.depth / dp * across
+        if not n_fluid <= MAX_PARTICLES:
+            raise SceneError(f"dp: {dp:g} m would need about {n_fluid:.3g} fluid particles; "
+                             "use a larger dp")
+        law = self.law
+        if not (math.isfinite(law.forward) and math.isfinite(law.backward)):
+            raise SceneError(f"wave: the paddle motion is not finite (excursion {law.forward!r} m)")
+        if law.forward + 2.0 * dp >= flume.length:
+            raise SceneError(
+                f"paddle: its forward excursion ({law.forward:.4g} m, plus 2 dp) reaches the "
+                f"far wall (length = {flume.length:g} m); lower the wave height or lengthen "
+                "the flume"
+            )
+        height = self.tank_height
+        px, pz = self.bed_profile
+        # The bed must be flat where the paddle moves.
+        reach = law.forward + 2.0 * dp
+        if np.max(_bed(px, pz, np.linspace(0.0, reach, 50))) > 0.0 or self._mesh_in_reach(reach):
+            raise SceneError(
+                f"beach: the bed rises within the paddle's reach (x < {reach:.3g} m, the forward "
+                "stroke plus 2 dp); move the beach away from the paddle"
+            )
+        if max(pz, default=0.0) > height + _TOL:
+            raise SceneError(
+                f"beach.z: the bed rises to {max(pz):g} m, above the walls (height = {height:g} m)"
+            )
+        if self.damping_zone is not None:
+            x0, _ = self.damping_zone
+            if x0 <= 0.0:
+                raise SceneError(
+                    f"damping.length: the zone covers the whole flume (it starts at x = {x0:g} m)"
+                )
+        names: set[str] = set()
+        for i, (g, name) in enumerate(zip(self.gauges, self._gauge_names(), strict=True)):
+            self._check_gauge(i, g)
+            if name in names:
+                raise SceneError(f"gauges[{i}].name: duplicate gauge name {name!r}")
+            names.add(name)
+        runup = self.runup_gauge
+        if runup is not None:
+            if runup.name in names:
+                raise SceneError(f"runup.name: {runup.name!r} is also the name of a gauge")
+            assert runup.start is not None and runup.end is not None
+            for label, point in (("runup.start", runup.start), ("runup.end", runup.end)):
+                self._check_point(label, point)
+        elif self.runup is True or isinstance(self.runup, RunupGauge):
+            raise SceneError(
+                "runup: the bed does not reach the still-water level, so there is no slope to "
+                "lay a run-up gauge on; give a RunupGauge(start, end) or runup=False"
+            )
+
+    def _check_lattice(self) -> None:
+        """The water must be as deep (and, in 3D, as wide) as asked.
+
+        The core fills the fluid box with whole lattice layers (:func:`lattice_layers`): a depth
+        of 70.5 dp becomes 70 dp of water, and the paddle law, the wave-theory targets and the
+        gauge zeroing, all computed for the depth asked, would then be wrong (measured: kimmoun2d
+        at dp 0.05 filled 0.700 m instead of 0.705). Only the still-water depth at the paddle
+        matters (the bed is flat there, z = 0; a beach or mesh cutting the water further on does
+        not change it). Across a 3D flume the lattice also fills whole columns between the side
+        walls at y = 0 and y = width (a width of 12.5 dp holds 12 dp of water beside an empty
+        lattice row, 12.6 dp holds 13 dp of water pressed against the wall), so the width must
+        be a whole number of dp too.
+        """
+        flume, dp = self.flume, float(self.dp)  # type: ignore[arg-type]
+        if not _whole(flume.depth, dp):
+            raise SceneError(_lattice_error("dp", "water depth", flume.depth, dp, "layers"))
+        if flume.width is not None and not _whole(flume.width, dp):
+            raise SceneError(_lattice_error("width", "flume width", flume.width, dp, "columns"))
+
+    def _mesh_in_reach(self, reach: float) -> bool:
+        """Whether a mesh beach rises above the floor at x < ``reach`` anywhere across the
+        flume (a vertex there, or the bed under a grid of dp/2 over that strip)."""
+        beach = self.flume.beach
+        if not isinstance(beach, MeshBeach):
+            return False
+        assert self.flume.width is not None
+        tol = 1e-6 * max(self.flume.length, 1.0)
+        pts = beach.points
+        if np.any((pts[:, 0] < reach) & (pts[:, 2] > tol)):
+            return True
+        step = 0.5 * float(self.dp)  # type: ignore[arg-type]
+        xs = np.linspace(0.0, reach, max(2, math.ceil(reach / step) + 1))
+        ys = np.linspace(0.0, self.flume.width, max(2, math.ceil(self.flume.width / step) + 1))
+        gx, gy = np.meshgrid(xs, ys)
+        return bool(np.max(beach.bed(gx, gy)) > tol)
+
+    def _check_point(self, label: str, point: Sequence[float], vertical: bool = True) -> None:
+        """A point (x, z) / (x, y, z) inside the flume, or SceneError naming ``label``."""
+        flume = self.flume
+        if len(point) != self.dim:
+            raise SceneError(f"{label}: needs {self.dim} coordinates in {self.dim}D, got "
+                             f"{len(point)}")
+        x = point[0]
+        if not -_TOL <= x <= flume.length + _TOL:
+            raise SceneError(
+                f"{label}: x = {x:g} m lies outside the flume [0, {flume.length:g}] m"
+            )
+        if self.dim == 3:
+            assert flume.width is not None
+            y = point[1]
+            if not -_TOL <= y <= flume.width + _TOL:
+                raise SceneError(
+                    f"{label}: y = {y:g} m lies outside the flume width [0, {flume.width:g}] m"
+                )
+        if vertical:
+            z = point[-1]
+            if not -_TOL <= z <= self.tank_height + _TOL:
+                raise SceneError(
+                    f"{label}: z = {z:g} m lies outside the flume height "
+                    f"[0, {self.tank_height:g}] m"
+                )
+
+    def _check_gauge(self, i: int, g: Gauge) -> None:
+        flume = self.flume
+        if isinstance(g, ElevationGauge):
+            if not -_TOL <= g.x <= flume.length + _TOL:
+                raise SceneError(
+                    f"gauges[{i}].x: x = {g.x:g} m lies outside the flume [0, {flume.length:g}] m"
+                )
+            if self.dim == 2 and g.y is not None:
+                raise SceneError(f"gauges[{i}].y: only used in 3D; leave it unset in 2D")
+            if self.dim == 3 and g.y is not None:
+                assert flume.width is not None
+                if not -_TOL <= g.y <= flume.width + _TOL:
+                    raise SceneError(
+                        f"gauges[{i}].y: y = {g.y:g} m lies outside the flume width "
+                        f"[0, {flume.width:g}] m"
+                    )
+        elif isinstance(g, VelocityProbe):
+            for j, p in enumerate(g.points):
+                self._check_point(f"gauges[{i}].points[{j}]", p)
+        else:
+            self._check_point(f"gauges[{i}].min", g.min)
+            self._check_point(f"gauges[{i}].max", g.max)
+
+    # -- derived quantities ---------------------------------------------------------------------
+
+    @property
+    def layers(self) -> int:
+        """Wall thickness in particle layers (``boundary_layers`` or ``ceil(2h / dp)``)."""
+        if self.boundary_layers is not None:
+            return int(self.boundary_layers)
+        return math.ceil(2.0 * self.smoothing_length / float(self.dp) - 1e-9)  # type: ignore[arg-type]
+
+    @property
+    def period(self) -> float | None:
+        """The wave period [s] (peak period for irregular waves; None otherwise)."""
+        return self.law.period
+
+    @property
+    def design_height(self) -> float | None:
+        """Height used to size the flume [m] (H; 1.8 hs for irregular waves; None if unknown)."""
+        wave = self.wave
+        if isinstance(wave, (RegularWave, SolitaryWave)):
+            return wave.height
+        if isinstance(wave, IrregularWave):
+            return 1.8 * wave.hs
+        return None
+
+    @property
+    def wavelength(self) -> float | None:
+        """Linear wavelength at the paddle depth [m] for the (peak) period, or None."""
+        if self.period is None:
+            return None
+        return float(wt.wavelength(self.period, self.flume.depth, self.gravity))
+
+    @property
+    def tank_height(self) -> float:
+        """Height of the tank walls [m]: the flume's, or ``depth + max(depth/2, 3 H)`` rounded up
+        to a whole dp (and at least the highest point of a profile beach)."""
+        flume = self.flume
+        if flume.height is not None:
+            return flume.height
+        h = self.design_height or 0.0
+        height = flume.depth + max(0.5 * flume.depth, 3.0 * h)
+        if isinstance(flume.beach, ProfileBeach):
+            height = max(height, max(flume.beach.z))
+        if isinstance(flume.beach, MeshBeach):
+            height = max(height, float(flume.beach.bounds[1][2]))
+        dp = float(self.dp)  # type: ignore[arg-type]
+        return math.ceil(height / dp - 1e-9) * dp
+
+    @functools.cached_property
+    def bed_profile(self) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] of the beach (empty lists for a flat floor); for a
+        :class:`MeshBeach`, along the flume's centre line."""
+        beach = self.flume.beach
+        if beach is None:
+            return [], []
+        if isinstance(beach, MeshBeach):
+            assert self.flume.width is not None
+            return beach.profile(self.flume.length, self.tank_height, y=0.5 * self.flume.width)
+        return beach.profile(self.flume.length, self.tank_height)
+
+    def bed(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
+        """Bed height above the floor at ``x`` [m] (under ``(x, y)`` for a :class:`MeshBeach`,
+        ``y`` defaulting to the centre line; the other beaches are uniform across)."""
+        beach = self.flume.beach
+        if isinstance(beach, MeshBeach):
+            assert self.flume.width is not None
+            yy = 0.5 * self.flume.width if y is None else y
+            return beach.bed(x, yy)
+        px, pz = self.bed_profile
+        if not px:
+            return np.zeros_like(np.asarray(x, dtype=np.float64))
+        return _bed(px, pz, x)
+
+    def still_depth(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None
+                    ) -> npt.NDArray[np.float64]:
+        """Still-water depth at ``x`` (and ``y``, see :meth:`bed`) [m] (negative where the bed
+        is above the SWL)."""
+        return self.flume.depth - self.bed(x, y)
+
+    @property
+    def beach_slope(self) -> float | None:
+        """tan(beta) of the beach for the Iribarren number: the plane beach's slope, or the slope
+        of the profile segment crossing the SWL (else the steepest rising segment); None flat."""
+        beach = self.flume.beach
+        if beach is None:
+            return None
+        if isinstance(beach, PlaneBeach):
+            return beach.slope
+        px, pz = (beach.x, beach.z) if isinstance(beach, ProfileBeach) else self.bed_profile
+        if not px:
+            return None
+        seg = _shoreline_segment(px, pz, self.flume.depth)
+        if seg is not None:
+            x0, z0, x1, z1 = seg
+            return (z1 - z0) / (x1 - x0)
+        slopes = [(pz[i + 1] - pz[i]) / (px[i + 1] - px[i]) for i in range(len(px) - 1)]
+        rising = [s for s in slopes if s > 0.0]
+        return max(rising) if rising else None
+
+    @property
+    def toe(self) -> float:
+        """x where the bed first leaves the floor [m] (the flume length for a flat floor)."""
+        px, pz = self.bed_profile
+        for i in range(len(px)):
+            if pz[i] > 0.0:
+                return px[max(i - 1, 0)] if i > 0 else px[0]
+        return self.flume.length
+
+    @property
+    def shoreline(self) -> float | None:
+        """x where the bed crosses the SWL [m] (last upward crossing), or None."""
+        px, pz = self.bed_profile
+        seg = _shoreline_segment(px, pz, self.flume.depth) if px else None
+        if seg is None:
+            return None
+        x0, z0, x1, z1 = seg
+        return x0 + (self.flume.depth - z0) * (x1 - x0) / (z1 - z0)
+
+    @property
+    def damping_zone(self) -> tuple[float, float] | None:
+        """``(x_start, strength)`` of the damping zone, or None."""
+        flume = self.flume
+        if not flume.damping_enabled():
+            return None
+        zone = flume.damping if isinstance(flume.damping, DampingZone) else DampingZone()
+        length = zone.length
+        if length is None:
+            wl = self.wavelength
+            if wl is None and isinstance(self.wave, SolitaryWave):
+                wl = None
+            length = wl if wl is not None else 0.25 * flume.length
+        return flume.length - length, zone.strength
+
+    @functools.cached_property
+    def law(self) -> _Law:
+        """The paddle law (the core's JSON) and its extent."""
+        # an absurd wave overflows the theory's formulas: the non-finite excursion that results
+        # is refused, naming the wave, by _validate_geometry
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            return self._make_law()
+
+    def _make_law(self) -> _Law:
+        wave, paddle, depth, g = self.wave, self.paddle, self.flume.depth, self.gravity
+        kind: wt.Paddle = "piston" if isinstance(paddle, Piston) else "flap"
+        hinge = (paddle.hinge_z or 0.0) if isinstance(paddle, Flap) else 0.0
+        if isinstance(wave, RegularWave):
+            try:
+                law = wt.regular_paddle_motion(
+                    wave.height, wave.period, depth, kind, paddle.order, wave.phase, g
+                )
+            except ValueError as exc:  # pragma: no cover - inputs are checked above
+                raise SceneError(f"wave: {exc}") from None
+            stroke = law.stroke
+            if kind == "flap" and hinge > 0.0:
+                stroke = wave.height / float(flap_height_to_stroke_hinged(law.wavenumber, depth,
+                                                                            hinge))
+            components = [[0.5 * stroke, law.omega, law.phase]]
+            if law.second_order_amplitude != 0.0:
+                components.append(
+                    [law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase]
+                )
+            return _harmonic_law(
+                components, sum(abs(c[0]) for c in components), paddle, wave.period,
+                design_height=wave.height, stroke=stroke,
+                second_order_amplitude=law.second_order_amplitude,
+            )
+        if isinstance(wave, IrregularWave):
+            try:
+                motion = wt.irregular_paddle_motion(
+                    wave.hs,
+                    wave.tp,
+                    depth,
+                    SPECTRA[wave.spectrum],  # type: ignore[arg-type]
+                    wave.gamma,
+                    wave.seed,
+                    wave.random_amplitudes,
+                    kind,
+                    wave.frequency_range,  # type: ignore[arg-type]
+                    wave.repeat_period,
+                    g,
+                )
+            except ValueError as exc:
+                raise SceneError(f"wave: {exc}") from None
+            amplitudes = np.asarray(motion.stroke_amplitudes)
+            if kind == "flap" and hinge > 0.0:
+                amplitudes = np.asarray(motion.wave_amplitudes) / flap_height_to_stroke_hinged(
+                    motion.wavenumbers, depth, hinge
+                )
+            omegas = 2.0 * np.pi * np.asarray(motion.frequencies)
+            components = [
+                [float(a), float(w), float(p)]
+                for a, w, p in zip(amplitudes, omegas, motion.phases, strict=True)
+            ]
+            # The core sizes the room behind the paddle with the sum of the amplitudes (a bound
+            # of any harmonic law), far above the signal's actual extremes for hundreds of
+            # components; the tank must satisfy that bound.
+            bound = float(np.sum(np.abs(amplitudes)))
+            return _harmonic_law(components, bound, paddle, wave.tp, design_height=1.8 * wave.hs)
+        if isinstance(wave, SolitaryWave):
+            try:
+                duration = float(wt.solitary_piston_duration(wave.height, depth,
+                                                             wave.truncation, g))
+                t = np.linspace(0.0, duration, wave.samples)
+                x, _ = wt.solitary_piston_motion(t, wave.height, depth, wave.truncation, g)
+            except ValueError as exc:
+                raise SceneError(f"wave: {exc}") from None
+            x_arr = np.asarray(x, dtype=np.float64)
+            return _Law(
+                law={"type": "table", "t": (t + wave.delay).tolist(), "x": x_arr.tolist()},
+                backward=0.0,
+                forward=float(x_arr.max()),
+                ramp_duration=wave.delay,
+                period=None,
+                design_height=wave.height,
+                stroke=float(x_arr[-1]),
+                duration=duration,
+            )
+        assert isinstance(wave, TabulatedMotion)
+        xs = np.asarray(wave.x)
+        return _Law(
+            law={"type": "table", "t": list(wave.t), "x": list(wave.x)},
+            backward=max(0.0, float(-xs.min())),
+            forward=max(0.0, float(xs.max())),
+            ramp_duration=0.0,
+            period=None,
+            design_height=None,
+            duration=wave.t[-1],
+        )
+
+    @property
+    def back_x(self) -> float:
+        """x of the tank's back wall face [m]: a whole number of dp behind the paddle face, far
+        enough for the paddle plate and its largest backward excursion (for a flap, the
+        excursion of the plate's top, which swings further than the still-water level)."""
+        dp = float(self.dp)  # type: ignore[arg-type]
+        back = self.law.backward
+        if isinstance(self.paddle, Flap):
+            hinge = self.paddle.hinge_z or 0.0
+            back *= (self.tank_height - hinge) / (self.flume.depth - hinge)
+        n = math.ceil((self.layers * dp + back) / dp - 1e-9) + 1
+        return round(-n * dp, 12)
+
+    def _default_dp(self) -> float:
+        depth = self.flume.depth
+        h = self.design_height
+        dp = depth / 15.0 if h is None else min(depth / 15.0, h / 4.0)
+        if self.flume.dim == 3:
+            dp = max(dp, depth / 8.0)
+        # a whole number of layers, so the water is as deep (and wide) as asked
+        return lattice_dp(depth, dp, self.flume.width)
+
+    def _default_sample_interval(self) -> float:
+        wave = self.wave
+        if isinstance(wave, RegularWave):
+            return min(wave.period / 40.0, 0.05)
+        if isinstance(wave, IrregularWave):
+            return min(wave.tp / 40.0, 0.05)
+        if isinstance(wave, SolitaryWave):
+            return min(math.sqrt(self.flume.depth / self.gravity) / 4.0, 0.05)
+        return 0.02
+
+    def _far_x(self) -> float:
+        """Where the analysis needs waves: the last gauge, or the shoreline, or the flume end."""
+        xs = [g.x for g in self.gauges if isinstance(g, ElevationGauge)]
+        xs += [p[0] for g in self.gauges if isinstance(g, VelocityProbe) for p in g.points]
+        if xs:
+            return max(xs)
+        shore = self.shoreline
+        return shore if shore is not None else 0.75 * self.flume.length
+
+    def _default_until(self) -> float:
+        wave = self.wave
+        far = self._far_x()
+        if isinstance(wave, RegularWave):
+            return self.law.ramp_duration + self.arrival_time(far) + 10.0 * wave.period
+        if isinstance(wave, IrregularWave):
+            return self.law.ramp_duration + self.arrival_time(far) + 50.0 * wave.tp
+        if isinstance(wave, SolitaryWave):
+            assert self.law.duration is not None
+            c = float(wt.solitary_celerity(wave.height, self.flume.depth, self.gravity))
+            return wave.delay + self.law.duration + 2.0 * self.flume.length / c
+        assert isinstance(wave, TabulatedMotion)
+        return wave.t[-1] + self.flume.length / math.sqrt(self.gravity * self.flume.depth)
+
+    def arrival_time(self, x: float) -> float:
+        """Time for the wave to travel from the paddle to ``x`` [s] (after the ramp).
+
+        Linear group velocity at the local still-water depth for periodic waves (the front of
+        a wave train travels at it), ``sqrt(g (d + H))`` for a solitary wave, ``sqrt(g d)``
+        otherwise; integrated along the bed, stopping where the depth falls below 1 % of the
+        paddle depth (the shoreline).
+        """
+        depth, g = self.flume.depth, self.gravity
+        xs = np.linspace(0.0, max(float(x), 0.0), 400)
+        d_local = np.asarray(self.still_depth(xs))
+        wet = d_local > 0.01 * depth
+        if not np.any(wet):
+            return 0.0
+        d_wet = np.where(wet, d_local, 0.01 * depth)
+        if self.period is not None:
+            speed = np.asarray(wt.group_velocity(self.period, d_wet, g))
+        elif isinstance(self.wave, SolitaryWave):
+            speed = np.sqrt(g * (d_wet + self.wave.height))
+        else:
+            speed = np.sqrt(g * d_wet)
+        inv = np.where(wet, 1.0 / speed, 0.0)
+        if xs.size < 2:
+            return 0.0
+        return float(np.sum(0.5 * (inv[1:] + inv[:-1]) * np.diff(xs)))
+
+    # -- gauges ---------------------------------------------------------------------------------
+
+    def _gauge_names(self) -> list[str]:
+        """Names of :attr:`gauges` (defaults by position or index, deduplicated with ``_2``...)."""
+        names: list[str] = []
+        taken = {g.name for g in self.gauges if g.name is not None}
+        counters = {"velocity": 0, "window": 0}
+        for g in self.gauges:
+            if g.name is not None:
+                names.append(g.name)
+                continue
+            if isinstance(g, ElevationGauge):
+                base = f"eta_x{g.x:.3f}"
+                if self.dim == 3:
+                    base += f"_y{self._gauge_y(g):.3f}"
+            elif isinstance(g, VelocityProbe):
+                base = f"velocity{counters['velocity']}"
+                counters["velocity"] += 1
+            else:
+                base = f"window{counters['window']}"
+                counters["window"] += 1
+            name, k = base, 2
+            while name in taken:
+                name, k = f"{base}_{k}", k + 1
+            taken.add(name)
+            names.append(name)
+        return names
+
+    def _gauge_y(self, g: ElevationGauge) -> float:
+        assert self.flume.width is not None
+        return 0.5 * self.flume.width if g.y is None else g.y
+
+    @property
+    def runup_gauge(self) -> RunupGauge | None:
+        """The run-up gauge with its segment resolved (automatic or given), or None."""
+        if self.runup is False:
+            return None
+        if isinstance(self.runup, RunupGauge) and self.runup.start is not None:
+            return self.runup
+        spec = self.runup if isinstance(self.runup, RunupGauge) else RunupGauge()
+        seg = self._auto_runup_segment()
+        if seg is None:
+            return None
+        start, end = seg
+        return dataclasses.replace(spec, start=start, end=end)
+
+    def _auto_runup_segment(self) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+        """A segment ``RUNUP_OFFSET_DP`` dp above the slope crossing the SWL, from well below the
+        lowest expected run-down (``max(2 H, 6 dp)`` below the SWL, not below the slope's
+        foot) to the top of that slope segment (at most the tank top)."""
+        px, pz = self.bed_profile
+        if not px:
+            return None
+        depth = self.flume.depth
+        seg = _shoreline_segment(px, pz, depth)
+        if seg is None:
+            return None
+        x0, z0, x1, z1 = seg
+        dp = float(self.dp)  # type: ignore[arg-type]
+        s = (z1 - z0) / (x1 - x0)
+        norm = math.hypot(1.0, s)
+        off = RUNUP_OFFSET_DP * dp
+        nx, nz = -s / norm * off, 1.0 / norm * off
+        drop = max(2.0 * (self.design_height or 0.0), 6.0 * dp)
+        z_start = max(z0, depth - drop)
+        z_end = min(z1, self.tank_height - nz - 0.5 * dp)
+        if z_end <= depth:
+            return None
+
+        def at(z: float) -> tuple[float, float]:
+            return x0 + (z - z0) / s + nx, z + nz
+
+        (xs, zs), (xe, ze) = at(z_start), at(z_end)
+        xe = min(xe, self.flume.length)
+        if self.dim == 3:
+            assert self.flume.width is not None
+            y = 0.5 * self.flume.width
+            return (xs, y, zs), (xe, y, ze)
+        return (xs, zs), (xe, ze)
+
+    def _gauge_specs(self) -> list[dict[str, Any]]:
+        """The gauges in the core's JSON form (runup last)."""
+        specs: list[dict[str, Any]] = []
+        default = float(self.sample_interval)  # type: ignore[arg-type]
+        for g, name in zip(self.gauges, self._gauge_names(), strict=True):
+            interval = default if g.interval is None else g.interval
+            if isinstance(g, ElevationGauge):
+                pos = [g.x, 0.0] if self.dim == 2 else [g.x, self._gauge_y(g), 0.0]
+                specs.append({"type": "elevation", "name": name, "position": pos,
+                              "method": g.method, "interval": interval})
+            elif isinstance(g, VelocityProbe):
+                specs.append({"type": "velocity", "name": name,
+                              "points": [list(p) for p in g.points], "interval": interval})
+            else:
+                specs.append({"type": "window", "name": name, "min": list(g.min),
+                              "max": list(g.max), "n": list(g.n), "interval": interval})
+        runup = self.runup_gauge
+        if runup is not None:
+            assert runup.start is not None and runup.end is not None
+            specs.append({
+                "type": "runup",
+                "name": runup.name,
+                "start": list(runup.start),
+                "end": list(runup.end),
+                "method": runup.method,
+                "interval": default if runup.interval is None else runup.interval,
+            })
+        return specs
+
+    # -- scene ----------------------------------------------------------------------------------
+
+    def _geometry(self) -> dict[str, Any]:
+        flume = self.flume
+        height = self.tank_height
+        back = self.back_x
+        if self.dim == 2:
+            tank = {"min": [back, 0.0], "max": [flume.length, height]}
+            fluid = {"min": [0.0, 0.0], "max": [flume.length, flume.depth]}
+        else:
+            assert flume.width is not None
+            tank = {"min": [back, 0.0, 0.0], "max": [flume.length, flume.width, height]}
+            fluid = {"min": [0.0, 0.0, 0.0], "max": [flume.length, flume.width, flume.depth]}
+        obstacles: list[dict[str, Any]] = []
+        px, pz = self.bed_profile
+        if isinstance(flume.beach, MeshBeach):
+            obstacles.append(flume.beach.to_core())
+        elif px:
+            obstacles.append({"shape": "profile", "x": list(px), "z": list(pz)})
+        paddle: dict[str, Any] = {
+            "kind": "piston" if isinstance(self.paddle, Piston) else "flap",
+            "x": 0.0,
+            "hinge_z": None,
+            "swl_z": None,
+            "law": self.law.law,
+        }
+        if isinstance(self.paddle, Flap):
+            paddle["hinge_z"] = float(self.paddle.hinge_z or 0.0)
+            paddle["swl_z"] = float(flume.depth)
+        scene: dict[str, Any] = {
+            "tank": tank,
+            "obstacles": obstacles,
+            "fluid": [fluid],
+            "paddle": paddle,
+            "gauges": self._gauge_specs(),
+        }
+        zone = self.damping_zone
+        if zone is not None:
+            scene["damping"] = {"x_start": zone[0], "x_end": flume.length, "strength": zone[1]}
+        return scene
+
+    def build(self) -> FlumeSimulation:  # type: ignore[override]
+        """Build the particles: a ready :class:`FlumeSimulation`."""
+        return FlumeSimulation(self)
+
+    def describe(self) -> dict[str, Any]:
+        """What the analysis and reports need to know about the set-up (JSON-ready)."""
+        law = self.law
+        info: dict[str, Any] = {
+            "type": type(self.wave).__name__,
+            "paddle": type(self.paddle).__name__.lower(),
+            "order": self.paddle.order,
+            "period": law.period,
+            "height": law.design_height if not isinstance(self.wave, IrregularWave) else None,
+            "wavelength": self.wavelength,
+            "ramp_duration": law.ramp_duration,
+            "stroke": law.stroke,
+            "second_order_amplitude": law.second_order_amplitude,
+        }
+        if isinstance(self.wave, IrregularWave):
+            info.update(hs=self.wave.hs, tp=self.wave.tp, spectrum=self.wave.spectrum)
+        if isinstance(self.wave, RegularWave) and self.wavelength is not None:
+            info["steepness"] = self.wave.height / self.wavelength
+            info["ursell"] = float(wt.ursell_number(self.wave.height, self.wave.period,
+                                                    self.flume.depth, self.gravity))
+            info["kd"] = 2.0 * math.pi / self.wavelength * self.flume.depth
+        return info
+
