@@ -2,10 +2,11 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -15,9 +16,53 @@ from .._core import SceneError
 from ..scenes import _non_negative, _positive
 from .checks import _TOL, _finite_tuple, _set, _strictly_increasing
 
+if TYPE_CHECKING:
+    from .scene import Flume
+
+Profile = tuple[Sequence[float], Sequence[float]]
+"""Bed vertices ``(x, z)`` [m]."""
+
+
+class _Bed:
+    """What every beach tells the flume (each beach overrides what differs)."""
+
+    def wall_top(self, height: float) -> float:
+        """The tank height ``height`` [m] raised, if need be, to the bed's highest point."""
+        return height
+
+    def bed_in(self, flume: Flume, profile: Profile, x: npt.ArrayLike,
+               y: npt.ArrayLike | None) -> npt.NDArray[np.float64]:
+        """Bed height above the floor at ``x`` [m] (uniform across the flume)."""
+        return _bed(*profile, x)
+
+    def iribarren_slope(self, profile: Profile, level: float) -> float | None:
+        """tan(beta) for the Iribarren number: the slope of the profile segment crossing
+        ``level`` (else the steepest rising segment), None without one."""
+        px, pz = profile
+        if not px:
+            return None
+        seg = _shoreline_segment(px, pz, level)
+        if seg is not None:
+            x0, z0, x1, z1 = seg
+            return (z1 - z0) / (x1 - x0)
+        slopes = [(pz[i + 1] - pz[i]) / (px[i + 1] - px[i]) for i in range(len(px) - 1)]
+        rising = [s for s in slopes if s > 0.0]
+        return max(rising) if rising else None
+
+    def rises_within(self, flume: Flume, reach: float, dp: float) -> bool:
+        """Whether the bed rises off the floor at x < ``reach`` [m] beyond what the profile
+        shows (a mesh's relief off the centre line)."""
+        return False
+
+    def to_core(self, profile: Profile | None = None) -> dict[str, Any]:
+        """The core's obstacle JSON: the bed ``profile`` (``shape = "profile"``)."""
+        assert profile is not None
+        px, pz = profile
+        return {"shape": "profile", "x": list(px), "z": list(pz)}
+
 
 @dataclass(frozen=True)
-class PlaneBeach:
+class PlaneBeach(_Bed):
     """A plane (uniform) beach rising from the flume floor at ``toe`` with slope ``slope``.
 
     The bed is ``z = slope (x - toe)`` for x >= toe, up to the top of the tank walls, and flat at
@@ -46,9 +91,24 @@ class PlaneBeach:
             return [self.toe, length], [0.0, self.slope * (length - self.toe)]
         return [self.toe, x_top, length], [0.0, top, top]
 
+    def check_in(self, flume: Flume) -> None:
+        """Refuse a toe beyond the flume."""
+        if self.toe >= flume.length:
+            raise SceneError(
+                f"beach.toe: the toe at x = {self.toe:g} m lies beyond the flume "
+                f"(length = {flume.length:g} m)"
+            )
+
+    def iribarren_slope(self, profile: Profile, level: float) -> float:
+        return self.slope
+
+    def profile_in(self, flume: Flume, top: float) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] in ``flume`` with walls ``top`` [m] high."""
+        return self.profile(flume.length, top)
+
 
 @dataclass(frozen=True)
-class ProfileBeach:
+class ProfileBeach(_Bed):
     """A piecewise-linear bed (bar, composite beach, measured bathymetry): solid below the line
     through the vertices ``(x[i], z[i])``; the flume floor (z = 0) outside ``[x[0], x[-1]]``.
 
@@ -77,9 +137,29 @@ class ProfileBeach:
         """Bed vertices ``(x, z)`` [m] (the profile as given)."""
         return list(self.x), list(self.z)
 
+    def check_in(self, flume: Flume) -> None:
+        """Refuse a profile beyond the flume or above its walls."""
+        if self.x[-1] > flume.length + _TOL:
+            raise SceneError(
+                f"beach.x: the profile ends at x = {self.x[-1]:g} m, beyond the flume "
+                f"(length = {flume.length:g} m)"
+            )
+        if flume.height is not None and max(self.z) > flume.height + _TOL:
+            raise SceneError(
+                f"beach.z: the bed rises to {max(self.z):g} m, above the walls "
+                f"(height = {flume.height:g} m)"
+            )
+
+    def wall_top(self, height: float) -> float:
+        return max(height, max(self.z))
+
+    def profile_in(self, flume: Flume, top: float) -> tuple[list[float], list[float]]:
+        """Bed vertices ``(x, z)`` [m] in ``flume`` with walls ``top`` [m] high."""
+        return self.profile(flume.length, top)
+
 
 @dataclass(frozen=True)
-class MeshBeach:
+class MeshBeach(_Bed):
     """Bathymetry from a closed triangle mesh (3D flumes only): an STL file, or NumPy vertices
     and triangles. The solid is the inside of the mesh; the core samples it into wall particles
     (``layers`` deep below its surface) and fills every lattice site above it with water, as
@@ -193,13 +273,66 @@ class MeshBeach:
         yy = 0.5 * (lo[1] + hi[1]) if y is None else float(y)
         return meshbed.profile_along_line(self.points, self.faces, yy, 0.0, length)
 
-    def to_core(self) -> dict[str, Any]:
-        """The core's obstacle JSON (``shape = "mesh"``)."""
+    def to_core(self, profile: Profile | None = None) -> dict[str, Any]:
+        """The core's obstacle JSON (``shape = "mesh"``; the profile is not needed)."""
         return {"shape": "mesh", "vertices": self.points.tolist(),
                 "triangles": self.faces.tolist()}
 
+    def check_in(self, flume: Flume) -> None:
+        """A mesh beach needs a 3D flume and must lie inside it (the core would clip what lies
+        outside the tank without a word)."""
+        field = self.source_field
+        if flume.width is None:
+            raise SceneError("beach: a MeshBeach (triangle mesh) needs a 3D flume; give the "
+                             "flume a width")
+        lo, hi = self.bounds
+        tol = 1e-6 * max(flume.length, flume.width, 1.0)  # float32 STL coordinates
+        limits = [("x", 0, 0.0, flume.length, f"the flume's length [0, {flume.length:g}] m"),
+                  ("y", 1, 0.0, flume.width, f"the flume's width [0, {flume.width:g}] m"),
+                  ("z", 2, 0.0, math.inf, "above the floor (z >= 0)")]
+        if flume.height is not None:
+            limits[2] = ("z", 2, 0.0, flume.height, f"between the floor and the top of the "
+                         f"walls [0, {flume.height:g}] m")
+        for name, k, a, b, where in limits:
+            if lo[k] < a - tol or hi[k] > b + tol:
+                raise SceneError(
+                    f"{field}: the mesh spans {name} = [{lo[k]:.6g}, {hi[k]:.6g}] m; it must "
+                    f"lie within {where} (move it with beach.offset, scale it with beach.scale)"
+                )
+
+    def profile_in(self, flume: Flume, top: float) -> tuple[list[float], list[float]]:
+        """Along the flume's centre line."""
+        assert flume.width is not None
+        return self.profile(flume.length, top, y=0.5 * flume.width)
+
+    def wall_top(self, height: float) -> float:
+        return max(height, float(self.bounds[1][2]))
+
+    def bed_in(self, flume: Flume, profile: Profile, x: npt.ArrayLike,
+               y: npt.ArrayLike | None) -> npt.NDArray[np.float64]:
+        """Under ``(x, y)``, ``y`` defaulting to the centre line."""
+        assert flume.width is not None
+        return self.bed(x, 0.5 * flume.width if y is None else y)
+
+    def rises_within(self, flume: Flume, reach: float, dp: float) -> bool:
+        """A vertex at x < ``reach`` above the floor, or the bed under a grid of dp/2 over that
+        strip, anywhere across the flume."""
+        assert flume.width is not None
+        tol = 1e-6 * max(flume.length, 1.0)
+        pts = self.points
+        if np.any((pts[:, 0] < reach) & (pts[:, 2] > tol)):
+            return True
+        step = 0.5 * dp
+        xs = np.linspace(0.0, reach, max(2, math.ceil(reach / step) + 1))
+        ys = np.linspace(0.0, flume.width, max(2, math.ceil(flume.width / step) + 1))
+        gx, gy = np.meshgrid(xs, ys)
+        return bool(np.max(self.bed(gx, gy)) > tol)
+
 
 Beach = PlaneBeach | ProfileBeach | MeshBeach
+
+BEACH_TYPES: tuple[type, ...] = (PlaneBeach, ProfileBeach, MeshBeach)
+"""The beach classes a :class:`Flume` takes."""
 
 
 def _bed(px: Sequence[float], pz: Sequence[float], x: npt.ArrayLike) -> npt.NDArray[np.float64]:

@@ -48,3 +48,9 @@ def _optional_name(name: str, value: Any) -> None:
 def _set(obj: Any, name: str, value: Any) -> None:
     object.__setattr__(obj, name, value)
 
+
+def expected(classes: Sequence[type]) -> str:
+    """``an A, B or C``: what a refusal says it expected."""
+    names = [c.__name__ for c in classes]
+    article = "an" if names[0][0] in "AEIOU" else "a"
+    return f"{article} {', '.join(names[:-1])} or {names[-1]}"

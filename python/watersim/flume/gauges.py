@@ -2,11 +2,16 @@
 from __future__ import annotations
 
 import math
+import typing
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from .._core import SceneError
 from ..scenes import _choice, _integer, _number, _positive
-from .checks import _finite_tuple, _optional_name, _set
+from .checks import _TOL, _finite_tuple, _optional_name, _set
+
+if TYPE_CHECKING:
+    from .scene import FlumeScene
 
 SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
 """Free-surface methods of elevation and run-up gauges (DESIGN.md section 4): ``"kernel"``, the
@@ -39,6 +44,9 @@ class ElevationGauge:
     name: str | None = None
     interval: float | None = None
 
+    TAG: ClassVar[str] = "elevation"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
     def __post_init__(self) -> None:
         _set(self, "x", _number("gauge.x", self.x))
         if self.y is not None:
@@ -47,6 +55,45 @@ class ElevationGauge:
         _optional_name("gauge.name", self.name)
         if self.interval is not None:
             _set(self, "interval", _positive("gauge.interval", self.interval))
+
+    def y_in(self, scene: FlumeScene) -> float:
+        """y of the gauge line in a 3D flume [m] (the centre line when not given)."""
+        assert scene.flume.width is not None
+        return 0.5 * scene.flume.width if self.y is None else self.y
+
+    def default_name(self, scene: FlumeScene, index: int) -> str:
+        """``eta_x{x:.3f}`` (``_y{y:.3f}`` added in 3D)."""
+        base = f"eta_x{self.x:.3f}"
+        if scene.dim == 3:
+            base += f"_y{self.y_in(scene):.3f}"
+        return base
+
+    def along_x(self) -> list[float]:
+        """Where along the flume the gauge reads the waves [m]."""
+        return [self.x]
+
+    def check_in(self, scene: FlumeScene, label: str) -> None:
+        """Refuse a gauge line outside the flume, naming ``label`` (``gauges[i]``)."""
+        flume = scene.flume
+        if not -_TOL <= self.x <= flume.length + _TOL:
+            raise SceneError(
+                f"{label}.x: x = {self.x:g} m lies outside the flume [0, {flume.length:g}] m"
+            )
+        if scene.dim == 2 and self.y is not None:
+            raise SceneError(f"{label}.y: only used in 3D; leave it unset in 2D")
+        if scene.dim == 3 and self.y is not None:
+            assert flume.width is not None
+            if not -_TOL <= self.y <= flume.width + _TOL:
+                raise SceneError(
+                    f"{label}.y: y = {self.y:g} m lies outside the flume width "
+                    f"[0, {flume.width:g}] m"
+                )
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        """The core's gauge JSON."""
+        pos = [self.x, 0.0] if scene.dim == 2 else [self.x, self.y_in(scene), 0.0]
+        return {"type": self.TAG, "name": name, "position": pos, "method": self.method,
+                "interval": interval}
 
 
 @dataclass(frozen=True)
@@ -63,6 +110,9 @@ class VelocityProbe:
     name: str | None = None
     interval: float | None = None
 
+    TAG: ClassVar[str] = "velocity"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
     def __post_init__(self) -> None:
         try:
             rows = [tuple(p) for p in self.points]
@@ -78,6 +128,21 @@ class VelocityProbe:
         _optional_name("gauge.name", self.name)
         if self.interval is not None:
             _set(self, "interval", _positive("gauge.interval", self.interval))
+
+    def default_name(self, scene: FlumeScene, index: int) -> str:
+        """``velocity{index}``, ``index`` counting the probes."""
+        return f"velocity{index}"
+
+    def along_x(self) -> list[float]:
+        return [p[0] for p in self.points]
+
+    def check_in(self, scene: FlumeScene, label: str) -> None:
+        for j, p in enumerate(self.points):
+            scene.check_point(f"{label}.points[{j}]", p)
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        return {"type": self.TAG, "name": name, "points": [list(p) for p in self.points],
+                "interval": interval}
 
 
 @dataclass(frozen=True)
@@ -101,6 +166,9 @@ class VelocityWindow:
     name: str | None = None
     interval: float | None = None
 
+    TAG: ClassVar[str] = "window"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
     def __post_init__(self) -> None:
         lo = _finite_tuple("gauge.min", self.min, 2)
         hi = _finite_tuple("gauge.max", self.max, 2)
@@ -119,6 +187,21 @@ class VelocityWindow:
         _optional_name("gauge.name", self.name)
         if self.interval is not None:
             _set(self, "interval", _positive("gauge.interval", self.interval))
+
+    def default_name(self, scene: FlumeScene, index: int) -> str:
+        """``window{index}``, ``index`` counting the windows."""
+        return f"window{index}"
+
+    def along_x(self) -> list[float]:
+        return []
+
+    def check_in(self, scene: FlumeScene, label: str) -> None:
+        scene.check_point(f"{label}.min", self.min)
+        scene.check_point(f"{label}.max", self.max)
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        return {"type": self.TAG, "name": name, "min": list(self.min), "max": list(self.max),
+                "n": list(self.n), "interval": interval}
 
 
 @dataclass(frozen=True)
@@ -141,6 +224,9 @@ class RunupGauge:
     name: str = "runup"
     interval: float | None = None
 
+    TAG: ClassVar[str] = "runup"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
     def __post_init__(self) -> None:
         if (self.start is None) != (self.end is None):
             raise SceneError("runup.end: give both start and end, or neither (automatic)")
@@ -160,8 +246,21 @@ class RunupGauge:
         if self.interval is not None:
             _set(self, "interval", _positive("runup.interval", self.interval))
 
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        """The core's gauge JSON (the segment resolved: see :attr:`FlumeScene.runup_gauge`)."""
+        assert self.start is not None and self.end is not None
+        return {"type": self.TAG, "name": name, "start": list(self.start),
+                "end": list(self.end), "method": self.method, "interval": interval}
+
 
 Gauge = ElevationGauge | VelocityProbe | VelocityWindow
+"""The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
+
+SCENE_GAUGE_TYPES: tuple[type, ...] = typing.get_args(Gauge)
+
+GAUGE_TYPES: dict[str, type] = {cls.TAG: cls for cls in (*SCENE_GAUGE_TYPES, RunupGauge)}
+"""Every gauge class by its ``TAG`` (the core's gauge ``type``)."""
+
 
 
 def elevation_gauges_between(

@@ -16,9 +16,70 @@ RAMPS: tuple[str, ...] = ("linear", "tanh")
 """Start-up ramp shapes of harmonic paddle laws."""
 
 
+@dataclass(frozen=True)
+class PaddleLaw:
+    """A resolved paddle law: the core's JSON and what the analysis needs."""
+
+    law: dict[str, Any]
+    backward: float
+    forward: float
+    ramp_duration: float
+    period: float | None
+    design_height: float | None
+    stroke: float | None = None
+    second_order_amplitude: float | None = None
+    duration: float | None = None
+
+
+class _Paddle:
+    """What every wave-maker tells the scene (each class overrides what differs)."""
+
+    kind: ClassVar[wt.Paddle]
+    ramp_periods: float
+    ramp: str
+
+    def check(self, depth: float) -> None:
+        """Refuse a paddle that does not fit a flume ``depth`` [m] deep."""
+
+    def hinged_transfer(self, k: npt.ArrayLike, depth: float) -> npt.NDArray[np.float64] | None:
+        """H/S of this paddle at wavenumbers ``k`` when wave theory's piston or bottom-hinged flap
+        does not describe it (a flap hinged above the floor), else None."""
+        return None
+
+    def back_room(self, backward: float, top: float, depth: float) -> float:
+        """Room the paddle's plate needs behind x = 0 [m] for a law moving ``backward`` [m] at
+        the still-water level ``depth``, with walls ``top`` [m] high."""
+        return backward
+
+    def harmonic_law(
+        self, components: list[list[float]], bound: float, period: float, **extra: Any
+    ) -> PaddleLaw:
+        """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over
+        ``components`` ``[a, omega, phase]`` with the start-up ramp over ``ramp_periods``
+        ``period`` [s]; ``bound`` [m] is the largest excursion either way, ``extra`` the other
+        :class:`PaddleLaw` fields."""
+        ramp = self.ramp_periods * period
+        return PaddleLaw(
+            law={
+                "type": "harmonic",
+                "components": components,
+                "ramp_duration": ramp,
+                "ramp_shape": self.ramp,
+            },
+            backward=bound,
+            forward=bound,
+            ramp_duration=ramp,
+            period=period,
+            **extra,
+        )
+
+    def to_core(self, law: PaddleLaw, depth: float) -> dict[str, Any]:
+        """The core's paddle JSON driven by ``law`` in water ``depth`` [m] deep."""
+        return {"kind": self.kind, "x": 0.0, "hinge_z": None, "swl_z": None, "law": law.law}
+
 
 @dataclass(frozen=True)
-class Piston:
+class Piston(_Paddle):
     """A piston wave-maker: the paddle translates along x.
 
     Attributes:
@@ -32,6 +93,8 @@ class Piston:
     ramp_periods: float = 2.0
     ramp: str = "linear"
 
+    kind: ClassVar[wt.Paddle] = "piston"
+
     def __post_init__(self) -> None:
         if isinstance(self.order, bool) or self.order not in (1, 2):
             raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
@@ -40,7 +103,7 @@ class Piston:
 
 
 @dataclass(frozen=True)
-class Flap:
+class Flap(_Paddle):
     """A flap wave-maker: the paddle rotates about a horizontal hinge at height ``hinge_z``;
     below the hinge it is a fixed wall. Its displacement X is set at the still-water level
     (``theta = atan(X / (depth - hinge_z))``). First-order generation only.
@@ -56,12 +119,37 @@ class Flap:
     ramp: str = "linear"
 
     order: ClassVar[int] = 1
+    kind: ClassVar[wt.Paddle] = "flap"
 
     def __post_init__(self) -> None:
         if self.hinge_z is not None:
             _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
         _choice("paddle.ramp", self.ramp, RAMPS)
+
+    @property
+    def hinge(self) -> float:
+        """The hinge's height above the floor [m] (0 for a bottom-hinged flap)."""
+        return self.hinge_z or 0.0
+
+    def check(self, depth: float) -> None:
+        if self.hinge_z is not None and self.hinge_z >= depth:
+            raise SceneError(
+                f"paddle.hinge_z: the hinge ({self.hinge_z:g} m) must be below the still-water "
+                f"level (depth = {depth:g} m)"
+            )
+
+    def hinged_transfer(self, k: npt.ArrayLike, depth: float) -> npt.NDArray[np.float64] | None:
+        if self.hinge > 0.0:
+            return flap_height_to_stroke_hinged(k, depth, self.hinge)
+        return None
+
+    def back_room(self, backward: float, top: float, depth: float) -> float:
+        # the plate's top swings further than the still-water level
+        return backward * ((top - self.hinge) / (depth - self.hinge))
+
+    def to_core(self, law: PaddleLaw, depth: float) -> dict[str, Any]:
+        return {**super().to_core(law, depth), "hinge_z": float(self.hinge), "swl_z": float(depth)}
 
 
 Paddle = Piston | Flap
@@ -90,42 +178,3 @@ def flap_height_to_stroke_hinged(
     span = kk * (depth - hinge_height)
     integral = (span * np.sinh(kd) - np.cosh(kd) + np.cosh(kk * hinge_height)) / span
     return np.asarray(4.0 * np.sinh(kd) / (np.sinh(2.0 * kd) + 2.0 * kd) * integral)
-
-
-
-@dataclass(frozen=True)
-class _Law:
-    """A resolved paddle law: the core's JSON and what the analysis needs."""
-
-    law: dict[str, Any]
-    backward: float
-    forward: float
-    ramp_duration: float
-    period: float | None
-    design_height: float | None
-    stroke: float | None = None
-    second_order_amplitude: float | None = None
-    duration: float | None = None
-
-
-def _harmonic_law(
-    components: list[list[float]], bound: float, paddle: Paddle, period: float, **extra: Any
-) -> _Law:
-    """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over ``components``
-    ``[a, omega, phase]`` with the paddle's start-up ramp over ``ramp_periods`` ``period`` [s];
-    ``bound`` [m] is the largest excursion either way, ``extra`` the other :class:`_Law` fields."""
-    ramp = paddle.ramp_periods * period
-    return _Law(
-        law={
-            "type": "harmonic",
-            "components": components,
-            "ramp_duration": ramp,
-            "ramp_shape": paddle.ramp,
-        },
-        backward=bound,
-        forward=bound,
-        ramp_duration=ramp,
-        period=period,
-        **extra,
-    )
-

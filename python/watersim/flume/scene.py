@@ -14,28 +14,13 @@ import numpy.typing as npt
 from .. import wave_theory as wt
 from .._core import SceneError
 from ..scenes import SceneBuilder, _positive
-from .bed import Beach, DampingZone, MeshBeach, PlaneBeach, ProfileBeach, _bed, _shoreline_segment
-from .checks import _TOL, _set
-from .gauges import (
-    RUNUP_OFFSET_DP,
-    ElevationGauge,
-    Gauge,
-    RunupGauge,
-    VelocityProbe,
-    VelocityWindow,
-)
+from .bed import BEACH_TYPES, Beach, DampingZone, _bed, _shoreline_segment
+from .checks import _TOL, _set, expected
+from .gauges import RUNUP_OFFSET_DP, SCENE_GAUGE_TYPES, Gauge, RunupGauge
 from .lattice import MAX_PARTICLES, _lattice_error, _whole, lattice_dp
-from .paddles import Flap, Paddle, Piston, _harmonic_law, _Law, flap_height_to_stroke_hinged
+from .paddles import Flap, Paddle, PaddleLaw, Piston
 from .simulation import FlumeSimulation
-from .waves import (
-    SOLITARY_MAX_H_OVER_D,
-    SPECTRA,
-    IrregularWave,
-    RegularWave,
-    SolitaryWave,
-    TabulatedMotion,
-    Wave,
-)
+from .waves import WAVE_TYPES, Wave
 
 
 @dataclass(frozen=True)
@@ -79,60 +64,21 @@ class Flume:
         if self.damping is not None and not isinstance(self.damping, (bool, DampingZone)):
             raise SceneError(f"damping: expected a DampingZone, True, False or None, got "
                              f"{self.damping!r}")
-        if isinstance(self.damping, DampingZone) and self.damping.length is not None:
-            if self.damping.length >= length:
+        zone = self.damping_spec()
+        if zone is not None and zone.length is not None:
+            if zone.length >= length:
                 raise SceneError(
-                    f"damping.length: the zone ({self.damping.length:g} m) is as long as the "
+                    f"damping.length: the zone ({zone.length:g} m) is as long as the "
                     f"flume (length = {length:g} m)"
                 )
         beach = self.beach
         if beach is None:
             return
-        if isinstance(beach, PlaneBeach):
-            if beach.toe >= length:
-                raise SceneError(
-                    f"beach.toe: the toe at x = {beach.toe:g} m lies beyond the flume "
-                    f"(length = {length:g} m)"
-                )
-        elif isinstance(beach, ProfileBeach):
-            if beach.x[-1] > length + _TOL:
-                raise SceneError(
-                    f"beach.x: the profile ends at x = {beach.x[-1]:g} m, beyond the flume "
-                    f"(length = {length:g} m)"
-                )
-            if self.height is not None and max(beach.z) > self.height + _TOL:
-                raise SceneError(
-                    f"beach.z: the bed rises to {max(beach.z):g} m, above the walls "
-                    f"(height = {self.height:g} m)"
-                )
-        elif isinstance(beach, MeshBeach):
-            self._check_mesh(beach)
-        else:
+        if not isinstance(beach, BEACH_TYPES):
             raise SceneError(
                 f"beach: expected a PlaneBeach, a ProfileBeach, a MeshBeach or None, got {beach!r}"
             )
-
-    def _check_mesh(self, beach: MeshBeach) -> None:
-        """A mesh beach needs a 3D flume and must lie inside it (the core would clip what lies
-        outside the tank without a word)."""
-        field = beach.source_field
-        if self.width is None:
-            raise SceneError("beach: a MeshBeach (triangle mesh) needs a 3D flume; give the "
-                             "flume a width")
-        lo, hi = beach.bounds
-        tol = 1e-6 * max(self.length, self.width, 1.0)  # float32 STL coordinates
-        limits = [("x", 0, 0.0, self.length, f"the flume's length [0, {self.length:g}] m"),
-                  ("y", 1, 0.0, self.width, f"the flume's width [0, {self.width:g}] m"),
-                  ("z", 2, 0.0, math.inf, "above the floor (z >= 0)")]
-        if self.height is not None:
-            limits[2] = ("z", 2, 0.0, self.height, f"between the floor and the top of the walls "
-                         f"[0, {self.height:g}] m")
-        for name, k, a, b, where in limits:
-            if lo[k] < a - tol or hi[k] > b + tol:
-                raise SceneError(
-                    f"{field}: the mesh spans {name} = [{lo[k]:.6g}, {hi[k]:.6g}] m; it must lie "
-                    f"within {where} (move it with beach.offset, scale it with beach.scale)"
-                )
+        beach.check_in(self)
 
     @property
     def dim(self) -> int:
@@ -144,6 +90,12 @@ class Flume:
         if self.damping is None:
             return self.beach is None
         return self.damping is not False
+
+    def damping_spec(self) -> DampingZone | None:
+        """The damping zone as given (the default zone for ``True`` or ``None``), None if off."""
+        if not self.damping_enabled():
+            return None
+        return self.damping if isinstance(self.damping, DampingZone) else DampingZone()
 
     def scene(self, wave: Wave, **kwargs: Any) -> FlumeScene:
         """The full, checked scene builder of a run in this flume (see :class:`FlumeScene` for
@@ -229,14 +181,11 @@ class FlumeScene(SceneBuilder):
     def __post_init__(self) -> None:
         if not isinstance(self.flume, Flume):
             raise SceneError(f"flume: expected a Flume, got {self.flume!r}")
-        if not isinstance(self.wave, (RegularWave, IrregularWave, SolitaryWave, TabulatedMotion)):
-            raise SceneError(
-                "wave: expected a RegularWave, IrregularWave, SolitaryWave or TabulatedMotion, "
-                f"got {self.wave!r}"
-            )
+        if not isinstance(self.wave, WAVE_TYPES):
+            raise SceneError(f"wave: expected {expected(WAVE_TYPES)}, got {self.wave!r}")
         if not isinstance(self.paddle, (Piston, Flap)):
             raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
-        if isinstance(self.gauges, (ElevationGauge, VelocityProbe, VelocityWindow)):
+        if isinstance(self.gauges, SCENE_GAUGE_TYPES):
             _set(self, "gauges", (self.gauges,))
         try:
             gauges = tuple(self.gauges)
@@ -245,10 +194,9 @@ class FlumeScene(SceneBuilder):
                 f"gauges: expected a sequence of gauges, got {self.gauges!r}"
             ) from None
         for i, g in enumerate(gauges):
-            if not isinstance(g, (ElevationGauge, VelocityProbe, VelocityWindow)):
+            if not isinstance(g, SCENE_GAUGE_TYPES):
                 raise SceneError(
-                    f"gauges[{i}]: expected an ElevationGauge, VelocityProbe or VelocityWindow, "
-                    f"got {g!r}"
+                    f"gauges[{i}]: expected {expected(SCENE_GAUGE_TYPES)}, got {g!r}"
                 )
         _set(self, "gauges", gauges)
         if self.runup is not None and not isinstance(self.runup, (bool, RunupGauge)):
@@ -276,38 +224,14 @@ class FlumeScene(SceneBuilder):
         if self.until is None:
             _set(self, "until", self._default_until())
         super().__post_init__()
-        if isinstance(self.wave, RegularWave):
-            wt.warn_if_invalid_wave(
-                self.wave.height,
-                self.wave.period,
-                self.flume.depth,
-                self.paddle.order,
-                "piston" if isinstance(self.paddle, Piston) else "flap",
-                self.gravity,
-            )
+        self.wave.warn(self.paddle, self.flume.depth, self.gravity)
 
     # -- checks ---------------------------------------------------------------------------------
 
     def _check_wave_and_paddle(self) -> None:
         """Combinations of wave and paddle the generation theory does not cover."""
-        wave, paddle, depth = self.wave, self.paddle, self.flume.depth
-        if isinstance(paddle, Flap) and paddle.hinge_z is not None and paddle.hinge_z >= depth:
-            raise SceneError(
-                f"paddle.hinge_z: the hinge ({paddle.hinge_z:g} m) must be below the still-water "
-                f"level (depth = {depth:g} m)"
-            )
-        if isinstance(paddle, Piston) and paddle.order == 2 and not isinstance(wave, RegularWave):
-            raise SceneError(
-                "paddle.order: second-order (Madsen 1971) generation is for regular waves only; "
-                "use order=1"
-            )
-        if isinstance(wave, SolitaryWave) and not isinstance(paddle, Piston):
-            raise SceneError("paddle: a solitary wave (Goring 1978) needs a Piston")
-        if isinstance(wave, SolitaryWave) and wave.height > SOLITARY_MAX_H_OVER_D * depth:
-            raise SceneError(
-                f"wave.height: H/d = {wave.height / depth:.3g} is above the highest solitary "
-                f"wave, H/d = {SOLITARY_MAX_H_OVER_D} (Longuet-Higgins & Fenton 1974)"
-            )
+        self.paddle.check(self.flume.depth)
+        self.wave.check(self.paddle, self.flume.depth)
 
     def _validate_geometry(self) -> None:
         flume = self.flume
@@ -346,7 +270,9 @@ class FlumeScene(SceneBuilder):
         px, pz = self.bed_profile
         # The bed must be flat where the paddle moves.
         reach = law.forward + 2.0 * dp
-        if np.max(_bed(px, pz, np.linspace(0.0, reach, 50))) > 0.0 or self._mesh_in_reach(reach):
+        beach = flume.beach
+        if np.max(_bed(px, pz, np.linspace(0.0, reach, 50))) > 0.0 or (
+                beach is not None and beach.rises_within(flume, reach, dp)):
             raise SceneError(
                 f"beach: the bed rises within the paddle's reach (x < {reach:.3g} m, the forward "
                 "stroke plus 2 dp); move the beach away from the paddle"
@@ -363,7 +289,7 @@ class FlumeScene(SceneBuilder):
                 )
         names: set[str] = set()
         for i, (g, name) in enumerate(zip(self.gauges, self._gauge_names(), strict=True)):
-            self._check_gauge(i, g)
+            g.check_in(self, f"gauges[{i}]")
             if name in names:
                 raise SceneError(f"gauges[{i}].name: duplicate gauge name {name!r}")
             names.add(name)
@@ -373,8 +299,8 @@ class FlumeScene(SceneBuilder):
                 raise SceneError(f"runup.name: {runup.name!r} is also the name of a gauge")
             assert runup.start is not None and runup.end is not None
             for label, point in (("runup.start", runup.start), ("runup.end", runup.end)):
-                self._check_point(label, point)
-        elif self.runup is True or isinstance(self.runup, RunupGauge):
+                self.check_point(label, point)
+        elif self.runup not in (None, False):
             raise SceneError(
                 "runup: the bed does not reach the still-water level, so there is no slope to "
                 "lay a run-up gauge on; give a RunupGauge(start, end) or runup=False"
@@ -399,24 +325,7 @@ class FlumeScene(SceneBuilder):
         if flume.width is not None and not _whole(flume.width, dp):
             raise SceneError(_lattice_error("width", "flume width", flume.width, dp, "columns"))
 
-    def _mesh_in_reach(self, reach: float) -> bool:
-        """Whether a mesh beach rises above the floor at x < ``reach`` anywhere across the
-        flume (a vertex there, or the bed under a grid of dp/2 over that strip)."""
-        beach = self.flume.beach
-        if not isinstance(beach, MeshBeach):
-            return False
-        assert self.flume.width is not None
-        tol = 1e-6 * max(self.flume.length, 1.0)
-        pts = beach.points
-        if np.any((pts[:, 0] < reach) & (pts[:, 2] > tol)):
-            return True
-        step = 0.5 * float(self.dp)  # type: ignore[arg-type]
-        xs = np.linspace(0.0, reach, max(2, math.ceil(reach / step) + 1))
-        ys = np.linspace(0.0, self.flume.width, max(2, math.ceil(self.flume.width / step) + 1))
-        gx, gy = np.meshgrid(xs, ys)
-        return bool(np.max(beach.bed(gx, gy)) > tol)
-
-    def _check_point(self, label: str, point: Sequence[float], vertical: bool = True) -> None:
+    def check_point(self, label: str, point: Sequence[float], vertical: bool = True) -> None:
         """A point (x, z) / (x, y, z) inside the flume, or SceneError naming ``label``."""
         flume = self.flume
         if len(point) != self.dim:
@@ -442,29 +351,6 @@ class FlumeScene(SceneBuilder):
                     f"[0, {self.tank_height:g}] m"
                 )
 
-    def _check_gauge(self, i: int, g: Gauge) -> None:
-        flume = self.flume
-        if isinstance(g, ElevationGauge):
-            if not -_TOL <= g.x <= flume.length + _TOL:
-                raise SceneError(
-                    f"gauges[{i}].x: x = {g.x:g} m lies outside the flume [0, {flume.length:g}] m"
-                )
-            if self.dim == 2 and g.y is not None:
-                raise SceneError(f"gauges[{i}].y: only used in 3D; leave it unset in 2D")
-            if self.dim == 3 and g.y is not None:
-                assert flume.width is not None
-                if not -_TOL <= g.y <= flume.width + _TOL:
-                    raise SceneError(
-                        f"gauges[{i}].y: y = {g.y:g} m lies outside the flume width "
-                        f"[0, {flume.width:g}] m"
-                    )
-        elif isinstance(g, VelocityProbe):
-            for j, p in enumerate(g.points):
-                self._check_point(f"gauges[{i}].points[{j}]", p)
-        else:
-            self._check_point(f"gauges[{i}].min", g.min)
-            self._check_point(f"gauges[{i}].max", g.max)
-
     # -- derived quantities ---------------------------------------------------------------------
 
     @property
@@ -482,12 +368,7 @@ class FlumeScene(SceneBuilder):
     @property
     def design_height(self) -> float | None:
         """Height used to size the flume [m] (H; 1.8 hs for irregular waves; None if unknown)."""
-        wave = self.wave
-        if isinstance(wave, (RegularWave, SolitaryWave)):
-            return wave.height
-        if isinstance(wave, IrregularWave):
-            return 1.8 * wave.hs
-        return None
+        return self.wave.design_height
 
     @property
     def wavelength(self) -> float | None:
@@ -505,10 +386,8 @@ class FlumeScene(SceneBuilder):
             return flume.height
         h = self.design_height or 0.0
         height = flume.depth + max(0.5 * flume.depth, 3.0 * h)
-        if isinstance(flume.beach, ProfileBeach):
-            height = max(height, max(flume.beach.z))
-        if isinstance(flume.beach, MeshBeach):
-            height = max(height, float(flume.beach.bounds[1][2]))
+        if flume.beach is not None:
+            height = flume.beach.wall_top(height)
         dp = float(self.dp)  # type: ignore[arg-type]
         return math.ceil(height / dp - 1e-9) * dp
 
@@ -519,23 +398,15 @@ class FlumeScene(SceneBuilder):
         beach = self.flume.beach
         if beach is None:
             return [], []
-        if isinstance(beach, MeshBeach):
-            assert self.flume.width is not None
-            return beach.profile(self.flume.length, self.tank_height, y=0.5 * self.flume.width)
-        return beach.profile(self.flume.length, self.tank_height)
+        return beach.profile_in(self.flume, self.tank_height)
 
     def bed(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
         """Bed height above the floor at ``x`` [m] (under ``(x, y)`` for a :class:`MeshBeach`,
         ``y`` defaulting to the centre line; the other beaches are uniform across)."""
         beach = self.flume.beach
-        if isinstance(beach, MeshBeach):
-            assert self.flume.width is not None
-            yy = 0.5 * self.flume.width if y is None else y
-            return beach.bed(x, yy)
-        px, pz = self.bed_profile
-        if not px:
+        if beach is None:
             return np.zeros_like(np.asarray(x, dtype=np.float64))
-        return _bed(px, pz, x)
+        return beach.bed_in(self.flume, self.bed_profile, x, y)
 
     def still_depth(self, x: npt.ArrayLike, y: npt.ArrayLike | None = None
                     ) -> npt.NDArray[np.float64]:
@@ -550,18 +421,7 @@ class FlumeScene(SceneBuilder):
         beach = self.flume.beach
         if beach is None:
             return None
-        if isinstance(beach, PlaneBeach):
-            return beach.slope
-        px, pz = (beach.x, beach.z) if isinstance(beach, ProfileBeach) else self.bed_profile
-        if not px:
-            return None
-        seg = _shoreline_segment(px, pz, self.flume.depth)
-        if seg is not None:
-            x0, z0, x1, z1 = seg
-            return (z1 - z0) / (x1 - x0)
-        slopes = [(pz[i + 1] - pz[i]) / (px[i + 1] - px[i]) for i in range(len(px) - 1)]
-        rising = [s for s in slopes if s > 0.0]
-        return max(rising) if rising else None
+        return beach.iribarren_slope(self.bed_profile, self.flume.depth)
 
     @property
     def toe(self) -> float:
@@ -586,112 +446,25 @@ class FlumeScene(SceneBuilder):
     def damping_zone(self) -> tuple[float, float] | None:
         """``(x_start, strength)`` of the damping zone, or None."""
         flume = self.flume
-        if not flume.damping_enabled():
+        zone = flume.damping_spec()
+        if zone is None:
             return None
-        zone = flume.damping if isinstance(flume.damping, DampingZone) else DampingZone()
         length = zone.length
         if length is None:
             wl = self.wavelength
-            if wl is None and isinstance(self.wave, SolitaryWave):
-                wl = None
             length = wl if wl is not None else 0.25 * flume.length
         return flume.length - length, zone.strength
 
     @functools.cached_property
-    def law(self) -> _Law:
+    def law(self) -> PaddleLaw:
         """The paddle law (the core's JSON) and its extent."""
         # an absurd wave overflows the theory's formulas: the non-finite excursion that results
         # is refused, naming the wave, by _validate_geometry
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             return self._make_law()
 
-    def _make_law(self) -> _Law:
-        wave, paddle, depth, g = self.wave, self.paddle, self.flume.depth, self.gravity
-        kind: wt.Paddle = "piston" if isinstance(paddle, Piston) else "flap"
-        hinge = (paddle.hinge_z or 0.0) if isinstance(paddle, Flap) else 0.0
-        if isinstance(wave, RegularWave):
-            try:
-                law = wt.regular_paddle_motion(
-                    wave.height, wave.period, depth, kind, paddle.order, wave.phase, g
-                )
-            except ValueError as exc:  # pragma: no cover - inputs are checked above
-                raise SceneError(f"wave: {exc}") from None
-            stroke = law.stroke
-            if kind == "flap" and hinge > 0.0:
-                stroke = wave.height / float(flap_height_to_stroke_hinged(law.wavenumber, depth,
-                                                                            hinge))
-            components = [[0.5 * stroke, law.omega, law.phase]]
-            if law.second_order_amplitude != 0.0:
-                components.append(
-                    [law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase]
-                )
-            return _harmonic_law(
-                components, sum(abs(c[0]) for c in components), paddle, wave.period,
-                design_height=wave.height, stroke=stroke,
-                second_order_amplitude=law.second_order_amplitude,
-            )
-        if isinstance(wave, IrregularWave):
-            try:
-                motion = wt.irregular_paddle_motion(
-                    wave.hs,
-                    wave.tp,
-                    depth,
-                    SPECTRA[wave.spectrum],  # type: ignore[arg-type]
-                    wave.gamma,
-                    wave.seed,
-                    wave.random_amplitudes,
-                    kind,
-                    wave.frequency_range,  # type: ignore[arg-type]
-                    wave.repeat_period,
-                    g,
-                )
-            except ValueError as exc:
-                raise SceneError(f"wave: {exc}") from None
-            amplitudes = np.asarray(motion.stroke_amplitudes)
-            if kind == "flap" and hinge > 0.0:
-                amplitudes = np.asarray(motion.wave_amplitudes) / flap_height_to_stroke_hinged(
-                    motion.wavenumbers, depth, hinge
-                )
-            omegas = 2.0 * np.pi * np.asarray(motion.frequencies)
-            components = [
-                [float(a), float(w), float(p)]
-                for a, w, p in zip(amplitudes, omegas, motion.phases, strict=True)
-            ]
-            # The core sizes the room behind the paddle with the sum of the amplitudes (a bound
-            # of any harmonic law), far above the signal's actual extremes for hundreds of
-            # components; the tank must satisfy that bound.
-            bound = float(np.sum(np.abs(amplitudes)))
-            return _harmonic_law(components, bound, paddle, wave.tp, design_height=1.8 * wave.hs)
-        if isinstance(wave, SolitaryWave):
-            try:
-                duration = float(wt.solitary_piston_duration(wave.height, depth,
-                                                             wave.truncation, g))
-                t = np.linspace(0.0, duration, wave.samples)
-                x, _ = wt.solitary_piston_motion(t, wave.height, depth, wave.truncation, g)
-            except ValueError as exc:
-                raise SceneError(f"wave: {exc}") from None
-            x_arr = np.asarray(x, dtype=np.float64)
-            return _Law(
-                law={"type": "table", "t": (t + wave.delay).tolist(), "x": x_arr.tolist()},
-                backward=0.0,
-                forward=float(x_arr.max()),
-                ramp_duration=wave.delay,
-                period=None,
-                design_height=wave.height,
-                stroke=float(x_arr[-1]),
-                duration=duration,
-            )
-        assert isinstance(wave, TabulatedMotion)
-        xs = np.asarray(wave.x)
-        return _Law(
-            law={"type": "table", "t": list(wave.t), "x": list(wave.x)},
-            backward=max(0.0, float(-xs.min())),
-            forward=max(0.0, float(xs.max())),
-            ramp_duration=0.0,
-            period=None,
-            design_height=None,
-            duration=wave.t[-1],
-        )
+    def _make_law(self) -> PaddleLaw:
+        return self.wave.law(self.paddle, self.flume.depth, self.gravity)
 
     @property
     def back_x(self) -> float:
@@ -699,10 +472,7 @@ class FlumeScene(SceneBuilder):
         enough for the paddle plate and its largest backward excursion (for a flap, the
         excursion of the plate's top, which swings further than the still-water level)."""
         dp = float(self.dp)  # type: ignore[arg-type]
-        back = self.law.backward
-        if isinstance(self.paddle, Flap):
-            hinge = self.paddle.hinge_z or 0.0
-            back *= (self.tank_height - hinge) / (self.flume.depth - hinge)
+        back = self.paddle.back_room(self.law.backward, self.tank_height, self.flume.depth)
         n = math.ceil((self.layers * dp + back) / dp - 1e-9) + 1
         return round(-n * dp, 12)
 
@@ -716,37 +486,18 @@ class FlumeScene(SceneBuilder):
         return lattice_dp(depth, dp, self.flume.width)
 
     def _default_sample_interval(self) -> float:
-        wave = self.wave
-        if isinstance(wave, RegularWave):
-            return min(wave.period / 40.0, 0.05)
-        if isinstance(wave, IrregularWave):
-            return min(wave.tp / 40.0, 0.05)
-        if isinstance(wave, SolitaryWave):
-            return min(math.sqrt(self.flume.depth / self.gravity) / 4.0, 0.05)
-        return 0.02
+        return self.wave.default_sample_interval(self.flume.depth, self.gravity)
 
     def _far_x(self) -> float:
         """Where the analysis needs waves: the last gauge, or the shoreline, or the flume end."""
-        xs = [g.x for g in self.gauges if isinstance(g, ElevationGauge)]
-        xs += [p[0] for g in self.gauges if isinstance(g, VelocityProbe) for p in g.points]
+        xs = [x for g in self.gauges for x in g.along_x()]
         if xs:
             return max(xs)
         shore = self.shoreline
         return shore if shore is not None else 0.75 * self.flume.length
 
     def _default_until(self) -> float:
-        wave = self.wave
-        far = self._far_x()
-        if isinstance(wave, RegularWave):
-            return self.law.ramp_duration + self.arrival_time(far) + 10.0 * wave.period
-        if isinstance(wave, IrregularWave):
-            return self.law.ramp_duration + self.arrival_time(far) + 50.0 * wave.tp
-        if isinstance(wave, SolitaryWave):
-            assert self.law.duration is not None
-            c = float(wt.solitary_celerity(wave.height, self.flume.depth, self.gravity))
-            return wave.delay + self.law.duration + 2.0 * self.flume.length / c
-        assert isinstance(wave, TabulatedMotion)
-        return wave.t[-1] + self.flume.length / math.sqrt(self.gravity * self.flume.depth)
+        return self.wave.default_until(self, self._far_x())
 
     def arrival_time(self, x: float) -> float:
         """Time for the wave to travel from the paddle to ``x`` [s] (after the ramp).
@@ -765,10 +516,8 @@ class FlumeScene(SceneBuilder):
         d_wet = np.where(wet, d_local, 0.01 * depth)
         if self.period is not None:
             speed = np.asarray(wt.group_velocity(self.period, d_wet, g))
-        elif isinstance(self.wave, SolitaryWave):
-            speed = np.sqrt(g * (d_wet + self.wave.height))
         else:
-            speed = np.sqrt(g * d_wet)
+            speed = self.wave.front_speed(d_wet, g)
         inv = np.where(wet, 1.0 / speed, 0.0)
         if xs.size < 2:
             return 0.0
@@ -780,21 +529,14 @@ class FlumeScene(SceneBuilder):
         """Names of :attr:`gauges` (defaults by position or index, deduplicated with ``_2``...)."""
         names: list[str] = []
         taken = {g.name for g in self.gauges if g.name is not None}
-        counters = {"velocity": 0, "window": 0}
+        counters: dict[type, int] = {}
         for g in self.gauges:
             if g.name is not None:
                 names.append(g.name)
                 continue
-            if isinstance(g, ElevationGauge):
-                base = f"eta_x{g.x:.3f}"
-                if self.dim == 3:
-                    base += f"_y{self._gauge_y(g):.3f}"
-            elif isinstance(g, VelocityProbe):
-                base = f"velocity{counters['velocity']}"
-                counters["velocity"] += 1
-            else:
-                base = f"window{counters['window']}"
-                counters["window"] += 1
+            index = counters.get(type(g), 0)
+            counters[type(g)] = index + 1
+            base = g.default_name(self, index)
             name, k = base, 2
             while name in taken:
                 name, k = f"{base}_{k}", k + 1
@@ -802,18 +544,14 @@ class FlumeScene(SceneBuilder):
             names.append(name)
         return names
 
-    def _gauge_y(self, g: ElevationGauge) -> float:
-        assert self.flume.width is not None
-        return 0.5 * self.flume.width if g.y is None else g.y
-
     @property
     def runup_gauge(self) -> RunupGauge | None:
         """The run-up gauge with its segment resolved (automatic or given), or None."""
         if self.runup is False:
             return None
-        if isinstance(self.runup, RunupGauge) and self.runup.start is not None:
-            return self.runup
         spec = self.runup if isinstance(self.runup, RunupGauge) else RunupGauge()
+        if spec.start is not None:
+            return spec
         seg = self._auto_runup_segment()
         if seg is None:
             return None
@@ -860,27 +598,11 @@ class FlumeScene(SceneBuilder):
         default = float(self.sample_interval)  # type: ignore[arg-type]
         for g, name in zip(self.gauges, self._gauge_names(), strict=True):
             interval = default if g.interval is None else g.interval
-            if isinstance(g, ElevationGauge):
-                pos = [g.x, 0.0] if self.dim == 2 else [g.x, self._gauge_y(g), 0.0]
-                specs.append({"type": "elevation", "name": name, "position": pos,
-                              "method": g.method, "interval": interval})
-            elif isinstance(g, VelocityProbe):
-                specs.append({"type": "velocity", "name": name,
-                              "points": [list(p) for p in g.points], "interval": interval})
-            else:
-                specs.append({"type": "window", "name": name, "min": list(g.min),
-                              "max": list(g.max), "n": list(g.n), "interval": interval})
+            specs.append(g.to_core(self, name, interval))
         runup = self.runup_gauge
         if runup is not None:
-            assert runup.start is not None and runup.end is not None
-            specs.append({
-                "type": "runup",
-                "name": runup.name,
-                "start": list(runup.start),
-                "end": list(runup.end),
-                "method": runup.method,
-                "interval": default if runup.interval is None else runup.interval,
-            })
+            interval = default if runup.interval is None else runup.interval
+            specs.append(runup.to_core(self, runup.name, interval))
         return specs
 
     # -- scene ----------------------------------------------------------------------------------
@@ -897,21 +619,9 @@ class FlumeScene(SceneBuilder):
             tank = {"min": [back, 0.0, 0.0], "max": [flume.length, flume.width, height]}
             fluid = {"min": [0.0, 0.0, 0.0], "max": [flume.length, flume.width, flume.depth]}
         obstacles: list[dict[str, Any]] = []
-        px, pz = self.bed_profile
-        if isinstance(flume.beach, MeshBeach):
-            obstacles.append(flume.beach.to_core())
-        elif px:
-            obstacles.append({"shape": "profile", "x": list(px), "z": list(pz)})
-        paddle: dict[str, Any] = {
-            "kind": "piston" if isinstance(self.paddle, Piston) else "flap",
-            "x": 0.0,
-            "hinge_z": None,
-            "swl_z": None,
-            "law": self.law.law,
-        }
-        if isinstance(self.paddle, Flap):
-            paddle["hinge_z"] = float(self.paddle.hinge_z or 0.0)
-            paddle["swl_z"] = float(flume.depth)
+        if flume.beach is not None:
+            obstacles.append(flume.beach.to_core(self.bed_profile))
+        paddle = self.paddle.to_core(self.law, flume.depth)
         scene: dict[str, Any] = {
             "tank": tank,
             "obstacles": obstacles,
@@ -936,18 +646,12 @@ class FlumeScene(SceneBuilder):
             "paddle": type(self.paddle).__name__.lower(),
             "order": self.paddle.order,
             "period": law.period,
-            "height": law.design_height if not isinstance(self.wave, IrregularWave) else None,
+            "height": law.design_height,
             "wavelength": self.wavelength,
             "ramp_duration": law.ramp_duration,
             "stroke": law.stroke,
             "second_order_amplitude": law.second_order_amplitude,
         }
-        if isinstance(self.wave, IrregularWave):
-            info.update(hs=self.wave.hs, tp=self.wave.tp, spectrum=self.wave.spectrum)
-        if isinstance(self.wave, RegularWave) and self.wavelength is not None:
-            info["steepness"] = self.wave.height / self.wavelength
-            info["ursell"] = float(wt.ursell_number(self.wave.height, self.wave.period,
-                                                    self.flume.depth, self.gravity))
-            info["kd"] = 2.0 * math.pi / self.wavelength * self.flume.depth
+        info.update(self.wave.describe(self))
         return info
 

@@ -1,11 +1,21 @@
 """The waves a flume makes: regular, irregular, solitary, or a tabulated paddle motion."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
+import numpy as np
+import numpy.typing as npt
+
+from .. import wave_theory as wt
 from .._core import SceneError
 from ..scenes import _choice, _integer, _non_negative, _number, _positive
 from .checks import _finite_tuple, _set, _strictly_increasing
+from .paddles import Paddle, PaddleLaw
+
+if TYPE_CHECKING:
+    from .scene import FlumeScene
 
 SPECTRA: dict[str, str] = {
     "jonswap": "jonswap",
@@ -20,9 +30,38 @@ SOLITARY_MAX_H_OVER_D = 0.83
 exist, and Goring's paddle motion for it is meaningless."""
 
 
+class _Wave:
+    """What every wave tells the scene: its paddle law, defaults and checks (each wave overrides
+    what differs)."""
+
+    @property
+    def design_height(self) -> float | None:
+        """Height used to size the flume [m], None if unknown."""
+        return None
+
+    def check(self, paddle: Paddle, depth: float) -> None:
+        """Refuse a paddle the generation theory of this wave does not cover."""
+        if paddle.order == 2:
+            raise SceneError(
+                "paddle.order: second-order (Madsen 1971) generation is for regular waves only; "
+                "use order=1"
+            )
+
+    def warn(self, paddle: Paddle, depth: float, g: float) -> None:
+        """Warn of a wave beyond the theory of its generation (none to check by default)."""
+
+    def front_speed(self, depth: npt.NDArray[np.float64], g: float) -> npt.NDArray[np.float64]:
+        """Speed of a non-periodic wave's front at the local still-water ``depth`` [m/s]:
+        ``sqrt(g d)``."""
+        return np.asarray(np.sqrt(g * depth))
+
+    def describe(self, scene: FlumeScene) -> dict[str, Any]:
+        """What :meth:`FlumeScene.describe` reports about this wave besides the law."""
+        return {}
+
 
 @dataclass(frozen=True)
-class RegularWave:
+class RegularWave(_Wave):
     """A regular wave of height ``height`` and period ``period`` (first or second order, as the
     paddle's ``order`` says).
 
@@ -41,9 +80,58 @@ class RegularWave:
         _set(self, "period", _positive("wave.period", self.period))
         _set(self, "phase", _number("wave.phase", self.phase))
 
+    @property
+    def design_height(self) -> float:
+        return self.height
+
+    def check(self, paddle: Paddle, depth: float) -> None:
+        """Every paddle makes a regular wave, at first or second order."""
+
+    def warn(self, paddle: Paddle, depth: float, g: float) -> None:
+        wt.warn_if_invalid_wave(self.height, self.period, depth, paddle.order, paddle.kind, g)
+
+    def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
+        """Biesel's first-order stroke, with Madsen's (1971) second harmonic for order 2."""
+        try:
+            law = wt.regular_paddle_motion(
+                self.height, self.period, depth, paddle.kind, paddle.order, self.phase, g
+            )
+        except ValueError as exc:  # pragma: no cover - inputs are checked above
+            raise SceneError(f"wave: {exc}") from None
+        stroke = law.stroke
+        transfer = paddle.hinged_transfer(law.wavenumber, depth)
+        if transfer is not None:
+            stroke = self.height / float(transfer)
+        components = [[0.5 * stroke, law.omega, law.phase]]
+        if law.second_order_amplitude != 0.0:
+            components.append([law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase])
+        return paddle.harmonic_law(
+            components, sum(abs(c[0]) for c in components), self.period,
+            design_height=self.height, stroke=stroke,
+            second_order_amplitude=law.second_order_amplitude,
+        )
+
+    def default_sample_interval(self, depth: float, g: float) -> float:
+        return min(self.period / 40.0, 0.05)
+
+    def default_until(self, scene: FlumeScene, far: float) -> float:
+        """Ten periods at ``far`` [m] after the ramp and the wave's arrival."""
+        return scene.law.ramp_duration + scene.arrival_time(far) + 10.0 * self.period
+
+    def describe(self, scene: FlumeScene) -> dict[str, Any]:
+        wavelength = scene.wavelength
+        if wavelength is None:
+            return {}
+        depth = scene.flume.depth
+        return {
+            "steepness": self.height / wavelength,
+            "ursell": float(wt.ursell_number(self.height, self.period, depth, scene.gravity)),
+            "kd": 2.0 * math.pi / wavelength * depth,
+        }
+
 
 @dataclass(frozen=True)
-class IrregularWave:
+class IrregularWave(_Wave):
     """An irregular wave synthesised from a spectrum (seeded, reproducible; see
     :func:`watersim.wave_theory.irregular_paddle_motion`).
 
@@ -89,9 +177,56 @@ class IrregularWave:
         if self.repeat_period is not None:
             _set(self, "repeat_period", _positive("wave.repeat_period", self.repeat_period))
 
+    @property
+    def design_height(self) -> float:
+        return 1.8 * self.hs
+
+    def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
+        """The spectrum's components through the paddle's transfer function."""
+        try:
+            motion = wt.irregular_paddle_motion(
+                self.hs,
+                self.tp,
+                depth,
+                SPECTRA[self.spectrum],  # type: ignore[arg-type]
+                self.gamma,
+                self.seed,
+                self.random_amplitudes,
+                paddle.kind,
+                self.frequency_range,  # type: ignore[arg-type]
+                self.repeat_period,
+                g,
+            )
+        except ValueError as exc:
+            raise SceneError(f"wave: {exc}") from None
+        amplitudes = np.asarray(motion.stroke_amplitudes)
+        transfer = paddle.hinged_transfer(motion.wavenumbers, depth)
+        if transfer is not None:
+            amplitudes = np.asarray(motion.wave_amplitudes) / transfer
+        omegas = 2.0 * np.pi * np.asarray(motion.frequencies)
+        components = [
+            [float(a), float(w), float(p)]
+            for a, w, p in zip(amplitudes, omegas, motion.phases, strict=True)
+        ]
+        # The core sizes the room behind the paddle with the sum of the amplitudes (a bound
+        # of any harmonic law), far above the signal's actual extremes for hundreds of
+        # components; the tank must satisfy that bound.
+        bound = float(np.sum(np.abs(amplitudes)))
+        return paddle.harmonic_law(components, bound, self.tp, design_height=1.8 * self.hs)
+
+    def default_sample_interval(self, depth: float, g: float) -> float:
+        return min(self.tp / 40.0, 0.05)
+
+    def default_until(self, scene: FlumeScene, far: float) -> float:
+        """Fifty peak periods at ``far`` [m] after the ramp and the waves' arrival."""
+        return scene.law.ramp_duration + scene.arrival_time(far) + 50.0 * self.tp
+
+    def describe(self, scene: FlumeScene) -> dict[str, Any]:
+        return {"height": None, "hs": self.hs, "tp": self.tp, "spectrum": self.spectrum}
+
 
 @dataclass(frozen=True)
-class SolitaryWave:
+class SolitaryWave(_Wave):
     """A solitary wave made by Goring's (1978) piston motion (a ``table`` law in the core).
 
     Attributes:
@@ -115,9 +250,56 @@ class SolitaryWave:
         _set(self, "delay", _non_negative("wave.delay", self.delay))
         _integer("wave.samples", self.samples, 2)
 
+    @property
+    def design_height(self) -> float:
+        return self.height
+
+    def check(self, paddle: Paddle, depth: float) -> None:
+        super().check(paddle, depth)
+        if paddle.kind != "piston":
+            raise SceneError("paddle: a solitary wave (Goring 1978) needs a Piston")
+        if self.height > SOLITARY_MAX_H_OVER_D * depth:
+            raise SceneError(
+                f"wave.height: H/d = {self.height / depth:.3g} is above the highest solitary "
+                f"wave, H/d = {SOLITARY_MAX_H_OVER_D} (Longuet-Higgins & Fenton 1974)"
+            )
+
+    def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
+        """Goring's (1978) piston motion, tabulated."""
+        try:
+            duration = float(wt.solitary_piston_duration(self.height, depth, self.truncation, g))
+            t = np.linspace(0.0, duration, self.samples)
+            x, _ = wt.solitary_piston_motion(t, self.height, depth, self.truncation, g)
+        except ValueError as exc:
+            raise SceneError(f"wave: {exc}") from None
+        x_arr = np.asarray(x, dtype=np.float64)
+        return PaddleLaw(
+            law={"type": "table", "t": (t + self.delay).tolist(), "x": x_arr.tolist()},
+            backward=0.0,
+            forward=float(x_arr.max()),
+            ramp_duration=self.delay,
+            period=None,
+            design_height=self.height,
+            stroke=float(x_arr[-1]),
+            duration=duration,
+        )
+
+    def default_sample_interval(self, depth: float, g: float) -> float:
+        return min(math.sqrt(depth / g) / 4.0, 0.05)
+
+    def default_until(self, scene: FlumeScene, far: float) -> float:
+        """The motion, then the time to cross the flume and come back."""
+        assert scene.law.duration is not None
+        c = float(wt.solitary_celerity(self.height, scene.flume.depth, scene.gravity))
+        return self.delay + scene.law.duration + 2.0 * scene.flume.length / c
+
+    def front_speed(self, depth: npt.NDArray[np.float64], g: float) -> npt.NDArray[np.float64]:
+        """``sqrt(g (d + H))``, the solitary wave's celerity."""
+        return np.asarray(np.sqrt(g * (depth + self.height)))
+
 
 @dataclass(frozen=True)
-class TabulatedMotion:
+class TabulatedMotion(_Wave):
     """A paddle displacement series (e.g. a measured wave-maker record), linearly interpolated
     by the core and held at its first and last values outside the table.
 
@@ -140,6 +322,29 @@ class TabulatedMotion:
         _set(self, "t", t)
         _set(self, "x", x)
 
+    def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
+        """The table itself."""
+        xs = np.asarray(self.x)
+        return PaddleLaw(
+            law={"type": "table", "t": list(self.t), "x": list(self.x)},
+            backward=max(0.0, float(-xs.min())),
+            forward=max(0.0, float(xs.max())),
+            ramp_duration=0.0,
+            period=None,
+            design_height=None,
+            duration=self.t[-1],
+        )
+
+    def default_sample_interval(self, depth: float, g: float) -> float:
+        return 0.02
+
+    def default_until(self, scene: FlumeScene, far: float) -> float:
+        """The table's end plus one crossing at ``sqrt(g d)``."""
+        return self.t[-1] + scene.flume.length / math.sqrt(scene.gravity * scene.flume.depth)
+
 
 Wave = RegularWave | IrregularWave | SolitaryWave | TabulatedMotion
+
+WAVE_TYPES: tuple[type, ...] = (RegularWave, IrregularWave, SolitaryWave, TabulatedMotion)
+"""The wave classes a :class:`FlumeScene` takes."""
 
