@@ -6,6 +6,7 @@ import itertools
 import math
 import warnings
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -13,7 +14,8 @@ import numpy.typing as npt
 
 from .. import analysis as an
 from .. import wave_theory as wt
-from .waves import IrregularWave, RegularWave, SolitaryWave, TabulatedMotion
+from .paddles import PaddleLaw
+from .waves import IrregularWave, RegularWave
 
 if TYPE_CHECKING:
     from .records import FlumeGauges
@@ -70,6 +72,44 @@ def _overturn_summary(overturns: Sequence[tuple[float, an.Overturn]], checks: in
     return out
 
 
+@dataclass(frozen=True)
+class _Run:
+    """What every part of the analysis reads: the set-up, the resampled records, the notes."""
+
+    setup: FlumeScene
+    gauges: FlumeGauges
+    t_start: float | None
+    t: npt.NDArray[np.float64]
+    eta: npt.NDArray[np.float64]
+    runup: npt.NDArray[np.float64] | None
+    notes: list[str]
+    regular: bool
+    irregular: bool
+
+    @property
+    def law(self) -> PaddleLaw:
+        return self.setup.law
+
+    @property
+    def period(self) -> float | None:
+        return self.setup.law.period
+
+    @property
+    def depth(self) -> float:
+        return self.setup.flume.depth
+
+    @property
+    def end(self) -> float:
+        return float(self.t[-1]) if self.t.size else 0.0
+
+    def window_start(self, x: float) -> float:
+        """Start of the steady part at ``x`` [m]: the ramp, the arrival and one period."""
+        if self.t_start is not None:
+            return float(self.t_start)
+        extra = self.period if self.period is not None else 0.0
+        return self.law.ramp_duration + self.setup.arrival_time(x) + extra
+
+
 def analyse_flume(
     setup: FlumeScene,
     gauges: FlumeGauges,
@@ -113,240 +153,267 @@ def analyse_flume(
     - ``notes``: what could not be computed and why.
     """
     notes: list[str] = []
-    wave = setup.wave
-    depth = setup.flume.depth
-    g = setup.gravity
-    law = setup.law
-    T = law.period
     t, eta, runup = gauges.uniform()
-    end = float(t[-1]) if t.size else 0.0
+    run = _Run(setup, gauges, t_start, t, eta, runup, notes,
+               regular=isinstance(setup.wave, RegularWave),
+               irregular=isinstance(setup.wave, IrregularWave))
     result: dict[str, Any] = {
         "wave": setup.describe(),
-        "still_water_depth": depth,
-        "record_end": end,
+        "still_water_depth": run.depth,
+        "record_end": run.end,
         "gauges": [],
         "notes": notes,
     }
-
-    def window_start(x: float) -> float:
-        if t_start is not None:
-            return float(t_start)
-        extra = T if T is not None else 0.0
-        return law.ramp_duration + setup.arrival_time(x) + extra
-
-    target = wave.height if isinstance(wave, RegularWave) else None
-    per_gauge: list[dict[str, Any]] = []
-    means: list[float | None] = []
-    for j, name in enumerate(gauges.names):
-        x = float(gauges.x[j])
-        entry: dict[str, Any] = {"name": name, "x": x, "still_depth": float(gauges.still_depth[j])}
-        if gauges.y is not None:
-            entry["y"] = float(gauges.y[j])
-        t0 = window_start(x)
-        sel = t >= t0
-        entry["window"] = [t0, end]
-        series = eta[sel, j] if eta.size else np.zeros(0)
-        ts = t[sel]
-        entry["n_samples"] = int(ts.size)
-        mean_h: float | None = None
-        if isinstance(wave, (SolitaryWave, TabulatedMotion)):
-            if eta.size:
-                k = int(np.argmax(eta[:, j]))
-                entry.update(eta_max=_f(eta[k, j]), t_max=_f(t[k]))
-        elif ts.size >= 4 and (T is None or end - t0 >= T):
-            zc = _caught(functools.partial(an.zero_crossing_waves, series, ts), notes, name)
-            if zc is not None:
-                mean_h = float(zc.mean_height)
-                entry.update(
-                    H_mean=_f(zc.mean_height),
-                    H_max=_f(zc.max_height),
-                    H_min=_f(np.min(zc.heights)),
-                    H_rms=_f(np.sqrt(np.mean(zc.heights**2))),
-                    H_significant=_f(zc.significant_height),
-                    T_mean=_f(zc.mean_period),
-                    n_waves=int(zc.heights.size),
-                    crest_mean=_f(np.mean(zc.crest_elevations)),
-                    trough_mean=_f(np.mean(zc.trough_elevations)),
-                )
-            entry["mean_level"] = _f(np.mean(series))
-            if isinstance(wave, RegularWave) and T is not None:
-                harm = _caught(functools.partial(an.harmonic_analysis, series, ts, T, 3),
-                               notes, name)
-                if harm is not None:
-                    entry["harmonics"] = [_f(a) for a in harm.amplitudes]
-                if target is not None and gauges.still_depth[j] >= depth - 1e-9:
-                    entry["H_target"] = target
-                    if mean_h is not None:
-                        entry["H_rel_error"] = (mean_h - target) / target
-            if isinstance(wave, IrregularWave):
-                spec = _caught(functools.partial(an.wave_spectrum, series, ts), notes, name)
-                if spec is not None:
-                    entry.update(hm0=_f(spec.hm0), tp=_f(spec.tp))
-        else:
-            notes.append(
-                f"{name}: the steady part starts at t = {t0:.3g} s, after the record's end "
-                f"({end:.3g} s); run longer for wave statistics"
-            )
-        means.append(mean_h)
-        per_gauge.append(entry)
-    result["gauges"] = per_gauge
-
-    # envelopes over each gauge's steady part
+    waves = [_gauge_waves(run, j) for j in range(len(gauges.names))]
+    result["gauges"] = [entry for entry, _ in waves]
     if gauges.names and eta.size:
-        env: dict[str, list[Any]] = {"name": [], "x": [], "maximum": [], "minimum": [],
-                                     "mean": [], "mid_level": []}
-        for j in np.argsort(gauges.x, kind="stable"):
-            sel = t >= window_start(float(gauges.x[j]))
-            if np.count_nonzero(sel) < 2:
-                sel = np.ones_like(t, dtype=bool)
-            e = an.water_level_envelopes(eta[sel, j])
-            env["name"].append(gauges.names[j])
-            env["x"].append(float(gauges.x[j]))
-            env["maximum"].append(_f(e.maximum))
-            env["minimum"].append(_f(e.minimum))
-            env["mean"].append(_f(e.mean))
-            env["mid_level"].append(_f(e.mid_level))
-        result["envelopes"] = env
-
-    # breaking
-    slope = setup.beach_slope
-    if setup.flume.beach is not None and gauges.names and eta.size:
-        breaking: dict[str, Any] = {}
-        sel = t >= (law.ramp_duration if t_start is None else t_start)
-        if np.count_nonzero(sel) >= 4:
-            onset = _caught(
-                lambda: an.breaking_onset_from_gauges(
-                    eta[sel], t[sel], gauges.x, gauges.still_depth, slope, T, g
-                ),
-                notes,
-                "breaking",
-            )
-            if onset is not None:
-                breaking.update(
-                    criterion=onset.criterion,
-                    position=onset.position,
-                    time=onset.time,
-                    gauge=gauges.names[onset.index],
-                    wave_height=_f(onset.wave_height),
-                    iribarren=_f(onset.iribarren),
-                    breaker_type=onset.breaker_type,
-                )
-            else:
-                breaking["criterion"] = f"H/d > {wt.MCCOWAN_BREAKING_RATIO}"
-                breaking["position"] = None
-                notes.append("breaking: no gauge recorded a wave with H/d > 0.78")
-        # where the mean wave height peaks, over the gauges on the slope (all wet ones if none)
-        wet = [(j, m) for j, m in enumerate(means)
-               if m is not None and 0.0 < gauges.still_depth[j] < depth - 1e-9]
-        if not wet:
-            wet = [(j, m) for j, m in enumerate(means)
-                   if m is not None and gauges.still_depth[j] > 0.0]
-        if wet:
-            j_max, h_max = max(wet, key=lambda item: item[1])
-            breaking["max_height_position"] = float(gauges.x[j_max])
-            breaking["max_height"] = h_max
-        if slope is not None and T is not None and law.design_height is not None:
-            l0 = float(wt.deep_water_wavelength(T, g))
-            height = wave.height if isinstance(wave, RegularWave) else law.design_height / 1.8
-            xi = float(wt.iribarren(slope, height, l0))
-            breaking["iribarren_incident"] = xi
-            breaking["breaker_type_incident"] = str(wt.breaker_type(xi))
-        breaking["slope"] = slope
-        if overturn_checks:
-            breaking["overturn"] = _overturn_summary(overturns, overturn_checks)
-            breaking["breaker_type_observed"] = "plunging" if overturns else None
-            if not overturns:
-                notes.append(f"breaking: no overturned surface (a jet over air) in "
-                             f"{overturn_checks} snapshots over the beach")
-        result["breaking"] = breaking
-
-    # run-up
+        result["envelopes"] = _envelopes(run)
+        if setup.flume.beach is not None:
+            means = [mean for _, mean in waves]
+            result["breaking"] = _breaking(run, means, overturns, overturn_checks)
     if runup is not None and t.size:
-        info: dict[str, Any] = {"name": gauges.runup_name}
-        runup_start = law.ramp_duration
-        shore = setup.shoreline
-        if shore is not None:
-            runup_start += setup.arrival_time(shore)
-        if t_start is not None:
-            runup_start = t_start
-        sel = t >= runup_start
-        info["window"] = [runup_start, end]
-        if np.count_nonzero(sel) >= 2:
-            info["max"] = _f(np.max(runup[sel]))
-            if isinstance(wave, RegularWave) and T is not None:
-                per_wave = _caught(
-                    lambda: an.runup_per_wave(runup[sel], t[sel], T, 0.0), notes, "runup"
-                )
-                if per_wave is not None:
-                    info.update(
-                        mean=per_wave.mean,
-                        std=per_wave.std,
-                        n_waves=int(per_wave.values.size),
-                        values=[float(v) for v in per_wave.values],
-                        mean_over_H=per_wave.mean / wave.height,
-                        std_over_H=per_wave.std / wave.height,
-                    )
-            elif isinstance(wave, IrregularWave):
-                info["R2"] = _f(np.percentile(runup[sel], 98.0))
-        else:
-            notes.append("runup: the record ends before the waves reach the shoreline")
-        result["runup"] = info
-
-    # reflection
-    if isinstance(wave, (RegularWave, IrregularWave)) and T is not None and gauges.names:
-        zone = setup.damping_zone
-        limit = min(zone[0] if zone is not None else setup.flume.length, setup.toe)
-        flat = [j for j in range(len(gauges.names))
-                if gauges.still_depth[j] >= depth - 1e-9 and 0.0 < gauges.x[j] < limit
-                and (gauges.y is None or abs(gauges.y[j] - gauges.y[0]) < 1e-12)]
-        knum = 2.0 * math.pi / float(wt.wavelength(T, depth, g))
-        xs = np.unique(gauges.x[flat]) if flat else np.zeros(0)
-        flat = [next(j for j in flat if gauges.x[j] == xv) for xv in xs]
-        chosen: tuple[tuple[int, ...], float] | None = None
-        if len(flat) >= 3:
-            chosen = _best_gauge_set(gauges.x[flat], knum, 3)
-        if len(flat) >= 2 and (chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT):
-            pair = _best_gauge_set(gauges.x[flat], knum, 2)
-            if pair is not None and (chosen is None or pair[1] > chosen[1]):
-                chosen = pair
-        if chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT:
-            result["reflection"] = None
-            notes.append(
-                "reflection: fewer than two gauges over the flat floor with a spacing away from "
-                "multiples of half a wavelength"
-            )
-        else:
-            idx = np.asarray([flat[i] for i in chosen[0]], dtype=np.intp)
-            t0 = max(window_start(float(gauges.x[j])) for j in idx)
-            sel = t >= t0
-            method = an.mansard_funke if len(idx) == 3 else an.goda_suzuki
-            kwargs: dict[str, Any] = (
-                {"period": T} if isinstance(wave, RegularWave)
-                else {"frequency_band": (0.5 / T, 2.0 / T)}
-            )
-            if np.count_nonzero(sel) >= 8 and t[-1] - t0 >= T:
-                refl = _caught(
-                    lambda: method(eta[np.ix_(sel, idx)], t[sel], gauges.x[idx], depth, g=g,
-                                   **kwargs),
-                    notes,
-                    "reflection",
-                )
-            else:
-                refl = None
-                notes.append("reflection: the record is too short after the waves arrive")
-            if refl is not None:
-                valid = refl.valid
-                inc = np.sqrt(np.sum(refl.incident_amplitudes[valid] ** 2))
-                ref = np.sqrt(np.sum(refl.reflected_amplitudes[valid] ** 2))
-                result["reflection"] = {
-                    "method": refl.method,
-                    "gauges": [gauges.names[int(j)] for j in idx],
-                    "coefficient": _f(refl.reflection_coefficient),
-                    "incident_amplitude": _f(inc),
-                    "reflected_amplitude": _f(ref),
-                    "window": [t0, end],
-                }
-            else:
-                result["reflection"] = None
+        result["runup"] = _runup(run, runup)
+    if (run.regular or run.irregular) and run.period is not None and gauges.names:
+        result["reflection"] = _reflection(run)
     return result
 
+
+def _gauge_waves(run: _Run, j: int) -> tuple[dict[str, Any], float | None]:
+    """Gauge ``j``'s waves over its steady part: zero-down-crossing statistics, set-up, and
+    the harmonics (regular waves), the spectrum (irregular) or the highest crest (others);
+    with the mean wave height [m] (None if not measured)."""
+    gauges, t, eta, notes, T = run.gauges, run.t, run.eta, run.notes, run.period
+    name = gauges.names[j]
+    x = float(gauges.x[j])
+    entry: dict[str, Any] = {"name": name, "x": x, "still_depth": float(gauges.still_depth[j])}
+    if gauges.y is not None:
+        entry["y"] = float(gauges.y[j])
+    t0 = run.window_start(x)
+    end = run.end
+    sel = t >= t0
+    entry["window"] = [t0, end]
+    series = eta[sel, j] if eta.size else np.zeros(0)
+    ts = t[sel]
+    entry["n_samples"] = int(ts.size)
+    if not (run.regular or run.irregular):
+        if eta.size:
+            k = int(np.argmax(eta[:, j]))
+            entry.update(eta_max=_f(eta[k, j]), t_max=_f(t[k]))
+        return entry, None
+    if not (ts.size >= 4 and (T is None or end - t0 >= T)):
+        notes.append(
+            f"{name}: the steady part starts at t = {t0:.3g} s, after the record's end "
+            f"({end:.3g} s); run longer for wave statistics"
+        )
+        return entry, None
+    zc = _caught(functools.partial(an.zero_crossing_waves, series, ts), notes, name)
+    mean_h = None if zc is None else float(zc.mean_height)
+    if zc is not None:
+        entry.update(
+            H_mean=_f(zc.mean_height),
+            H_max=_f(zc.max_height),
+            H_min=_f(np.min(zc.heights)),
+            H_rms=_f(np.sqrt(np.mean(zc.heights**2))),
+            H_significant=_f(zc.significant_height),
+            T_mean=_f(zc.mean_period),
+            n_waves=int(zc.heights.size),
+            crest_mean=_f(np.mean(zc.crest_elevations)),
+            trough_mean=_f(np.mean(zc.trough_elevations)),
+        )
+    entry["mean_level"] = _f(np.mean(series))
+    if run.regular and T is not None:
+        harm = _caught(functools.partial(an.harmonic_analysis, series, ts, T, 3), notes, name)
+        if harm is not None:
+            entry["harmonics"] = [_f(a) for a in harm.amplitudes]
+        if gauges.still_depth[j] >= run.depth - 1e-9:
+            target = run.setup.wave.height  # type: ignore[union-attr]
+            entry["H_target"] = target
+            if mean_h is not None:
+                entry["H_rel_error"] = (mean_h - target) / target
+    if run.irregular:
+        spec = _caught(functools.partial(an.wave_spectrum, series, ts), notes, name)
+        if spec is not None:
+            entry.update(hm0=_f(spec.hm0), tp=_f(spec.tp))
+    return entry, mean_h
+
+
+def _envelopes(run: _Run) -> dict[str, list[Any]]:
+    """Highest, lowest, mean and mid water level at each gauge (sorted by x) over its steady
+    part (the whole record when that part has fewer than two samples)."""
+    gauges, t, eta = run.gauges, run.t, run.eta
+    env: dict[str, list[Any]] = {"name": [], "x": [], "maximum": [], "minimum": [],
+                                 "mean": [], "mid_level": []}
+    for j in np.argsort(gauges.x, kind="stable"):
+        sel = t >= run.window_start(float(gauges.x[j]))
+        if np.count_nonzero(sel) < 2:
+            sel = np.ones_like(t, dtype=bool)
+        e = an.water_level_envelopes(eta[sel, j])
+        env["name"].append(gauges.names[j])
+        env["x"].append(float(gauges.x[j]))
+        env["maximum"].append(_f(e.maximum))
+        env["minimum"].append(_f(e.minimum))
+        env["mean"].append(_f(e.mean))
+        env["mid_level"].append(_f(e.mid_level))
+    return env
+
+
+def _breaking(run: _Run, means: Sequence[float | None],
+              overturns: Sequence[tuple[float, an.Overturn]], overturn_checks: int
+              ) -> dict[str, Any]:
+    """Where and how the waves break on the beach: the gauges' H/d criterion, where the mean
+    wave height ``means`` peaks, the incident Iribarren number and the overturns seen."""
+    setup, gauges, t, eta, notes, T = run.setup, run.gauges, run.t, run.eta, run.notes, run.period
+    depth, g, law = run.depth, setup.gravity, run.law
+    slope = setup.beach_slope
+    breaking: dict[str, Any] = {}
+    sel = t >= (law.ramp_duration if run.t_start is None else run.t_start)
+    if np.count_nonzero(sel) >= 4:
+        onset = _caught(
+            lambda: an.breaking_onset_from_gauges(
+                eta[sel], t[sel], gauges.x, gauges.still_depth, slope, T, g
+            ),
+            notes,
+            "breaking",
+        )
+        if onset is not None:
+            breaking.update(
+                criterion=onset.criterion,
+                position=onset.position,
+                time=onset.time,
+                gauge=gauges.names[onset.index],
+                wave_height=_f(onset.wave_height),
+                iribarren=_f(onset.iribarren),
+                breaker_type=onset.breaker_type,
+            )
+        else:
+            breaking["criterion"] = f"H/d > {wt.MCCOWAN_BREAKING_RATIO}"
+            breaking["position"] = None
+            notes.append("breaking: no gauge recorded a wave with H/d > 0.78")
+    # where the mean wave height peaks, over the gauges on the slope (all wet ones if none)
+    wet = [(j, m) for j, m in enumerate(means)
+           if m is not None and 0.0 < gauges.still_depth[j] < depth - 1e-9]
+    if not wet:
+        wet = [(j, m) for j, m in enumerate(means)
+               if m is not None and gauges.still_depth[j] > 0.0]
+    if wet:
+        j_max, h_max = max(wet, key=lambda item: item[1])
+        breaking["max_height_position"] = float(gauges.x[j_max])
+        breaking["max_height"] = h_max
+    if slope is not None and T is not None and law.design_height is not None:
+        l0 = float(wt.deep_water_wavelength(T, g))
+        height = (setup.wave.height if run.regular  # type: ignore[union-attr]
+                  else law.design_height / 1.8)
+        xi = float(wt.iribarren(slope, height, l0))
+        breaking["iribarren_incident"] = xi
+        breaking["breaker_type_incident"] = str(wt.breaker_type(xi))
+    breaking["slope"] = slope
+    if overturn_checks:
+        breaking["overturn"] = _overturn_summary(overturns, overturn_checks)
+        breaking["breaker_type_observed"] = "plunging" if overturns else None
+        if not overturns:
+            notes.append(f"breaking: no overturned surface (a jet over air) in "
+                         f"{overturn_checks} snapshots over the beach")
+    return breaking
+
+
+def _runup(run: _Run, runup: npt.NDArray[np.float64]) -> dict[str, Any]:
+    """The run-up after the waves reach the shoreline: its highest value, per wave (regular
+    waves) or its 2 % exceedance R2 (irregular)."""
+    setup, t, notes, T = run.setup, run.t, run.notes, run.period
+    info: dict[str, Any] = {"name": run.gauges.runup_name}
+    runup_start = run.law.ramp_duration
+    shore = setup.shoreline
+    if shore is not None:
+        runup_start += setup.arrival_time(shore)
+    if run.t_start is not None:
+        runup_start = run.t_start
+    sel = t >= runup_start
+    info["window"] = [runup_start, run.end]
+    if np.count_nonzero(sel) < 2:
+        notes.append("runup: the record ends before the waves reach the shoreline")
+        return info
+    info["max"] = _f(np.max(runup[sel]))
+    if run.regular and T is not None:
+        height = setup.wave.height  # type: ignore[union-attr]
+        per_wave = _caught(lambda: an.runup_per_wave(runup[sel], t[sel], T, 0.0), notes, "runup")
+        if per_wave is not None:
+            info.update(
+                mean=per_wave.mean,
+                std=per_wave.std,
+                n_waves=int(per_wave.values.size),
+                values=[float(v) for v in per_wave.values],
+                mean_over_H=per_wave.mean / height,
+                std_over_H=per_wave.std / height,
+            )
+    elif run.irregular:
+        info["R2"] = _f(np.percentile(runup[sel], 98.0))
+    return info
+
+
+def _reflection_gauges(
+    run: _Run, k: float
+) -> tuple[list[int], tuple[tuple[int, ...], float] | None]:
+    """The gauges over the flat floor before the beach and the damping zone (one per x, on
+    the first gauge's line across), and the best conditioned set of three (or two) of them
+    for wavenumber ``k`` with its condition."""
+    setup, gauges = run.setup, run.gauges
+    zone = setup.damping_zone
+    limit = min(zone[0] if zone is not None else setup.flume.length, setup.toe)
+    flat = [j for j in range(len(gauges.names))
+            if gauges.still_depth[j] >= run.depth - 1e-9 and 0.0 < gauges.x[j] < limit
+            and (gauges.y is None or abs(gauges.y[j] - gauges.y[0]) < 1e-12)]
+    xs = np.unique(gauges.x[flat]) if flat else np.zeros(0)
+    flat = [next(j for j in flat if gauges.x[j] == xv) for xv in xs]
+    chosen: tuple[tuple[int, ...], float] | None = None
+    if len(flat) >= 3:
+        chosen = _best_gauge_set(gauges.x[flat], k, 3)
+    if len(flat) >= 2 and (chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT):
+        pair = _best_gauge_set(gauges.x[flat], k, 2)
+        if pair is not None and (chosen is None or pair[1] > chosen[1]):
+            chosen = pair
+    return flat, chosen
+
+
+def _reflection(run: _Run) -> dict[str, Any] | None:
+    """The reflection coefficient from two (Goda & Suzuki 1976) or three (Mansard & Funke
+    1980) gauges over the flat floor, or None (with a note) without a usable set."""
+    gauges, t, eta, notes, depth, g = (run.gauges, run.t, run.eta, run.notes, run.depth,
+                                       run.setup.gravity)
+    T = run.period
+    assert T is not None
+    knum = 2.0 * math.pi / float(wt.wavelength(T, depth, g))
+    flat, chosen = _reflection_gauges(run, knum)
+    if chosen is None or chosen[1] < an._SPACING_CONDITION_LIMIT:
+        notes.append(
+            "reflection: fewer than two gauges over the flat floor with a spacing away from "
+            "multiples of half a wavelength"
+        )
+        return None
+    idx = np.asarray([flat[i] for i in chosen[0]], dtype=np.intp)
+    t0 = max(run.window_start(float(gauges.x[j])) for j in idx)
+    sel = t >= t0
+    method = an.mansard_funke if len(idx) == 3 else an.goda_suzuki
+    kwargs: dict[str, Any] = (
+        {"period": T} if run.regular else {"frequency_band": (0.5 / T, 2.0 / T)}
+    )
+    if not (np.count_nonzero(sel) >= 8 and t[-1] - t0 >= T):
+        notes.append("reflection: the record is too short after the waves arrive")
+        return None
+    refl = _caught(
+        lambda: method(eta[np.ix_(sel, idx)], t[sel], gauges.x[idx], depth, g=g, **kwargs),
+        notes,
+        "reflection",
+    )
+    if refl is None:
+        return None
+    valid = refl.valid
+    inc = np.sqrt(np.sum(refl.incident_amplitudes[valid] ** 2))
+    ref = np.sqrt(np.sum(refl.reflected_amplitudes[valid] ** 2))
+    return {
+        "method": refl.method,
+        "gauges": [gauges.names[int(j)] for j in idx],
+        "coefficient": _f(refl.reflection_coefficient),
+        "incident_amplitude": _f(inc),
+        "reflected_amplitude": _f(ref),
+        "window": [t0, run.end],
+    }
