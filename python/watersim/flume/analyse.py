@@ -1,4 +1,5 @@
 """The wave analysis of a flume run: wave statistics, envelopes, breaking, run-up, reflection."""
+
 from __future__ import annotations
 
 import functools

@@ -1,4 +1,5 @@
 """The bed of the flume: plane, profile and mesh beaches, and the damping zone."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -350,7 +351,6 @@ def _shoreline_segment(
         if pz[i] <= level < pz[i + 1]:
             return px[i], pz[i], px[i + 1], pz[i + 1]
     return None
-
 
 
 @dataclass(frozen=True)

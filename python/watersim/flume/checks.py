@@ -1,4 +1,5 @@
 """Small input checks shared by the flume's models (each raises SceneError naming the field)."""
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -9,7 +10,6 @@ import numpy as np
 from .._core import SceneError
 
 _TOL = 1e-9
-
 
 
 def _finite_tuple(name: str, values: Any, min_len: int = 1) -> tuple[float, ...]:

@@ -1,4 +1,5 @@
 """The gauges of a flume: surface elevation, velocity probes and windows, run-up."""
+
 from __future__ import annotations
 
 import math
@@ -6,12 +7,19 @@ import typing
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
+import numpy as np
+import numpy.typing as npt
+
 from .._core import SceneError
 from ..scenes import _choice, _integer, _number, _positive
 from .checks import _TOL, _finite_tuple, _optional_name, _set
 
 if TYPE_CHECKING:
+    from .records import FlumeGauges
     from .scene import FlumeScene
+
+Series = tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]
+"""A gauge's column of ``gauges.csv``: ``(name, t [s], values)``."""
 
 SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
 """Free-surface methods of elevation and run-up gauges (DESIGN.md section 4): ``"kernel"``, the
@@ -25,9 +33,70 @@ RUNUP_OFFSET_DP = 1.5
 """Distance of the automatic run-up gauge line above the beach surface, in dp (normal to it)."""
 
 
+@dataclass(frozen=True)
+class VelocityRecord:
+    """A velocity probe or window record.
+
+    Attributes:
+        name: the gauge name.
+        t: sample times (n,) [s].
+        points: sampled points (p, dim) [m].
+        velocity: (n, p, dim) [m/s]; for windows reshaped to ``(n, *reversed(shape), dim)``.
+        kernel_sum: (n, p) kernel volume sum (about 1 in the water, 0 outside): mask samples
+            with ``kernel_sum < 0.5`` as dry. Windows: ``(n, *reversed(shape))``.
+        shape: the window's points per axis (x first), or None for probes.
+    """
+
+    name: str
+    t: npt.NDArray[np.float64]
+    points: npt.NDArray[np.float64]
+    velocity: npt.NDArray[np.float64]
+    kernel_sum: npt.NDArray[np.float64]
+    shape: tuple[int, ...] | None
+
+    @staticmethod
+    def read(raw: dict[str, Any], dim: int, window: bool) -> VelocityRecord:
+        """The core's probe (or, ``window``, window) record ``raw`` of a ``dim``-D flume."""
+        vel = np.asarray(raw["velocity"], dtype=np.float64)
+        ksum = np.asarray(raw["kernel_sum"], dtype=np.float64)
+        shape = tuple(int(v) for v in raw.get("shape") or ()) or None
+        if window and shape is not None:
+            grid = tuple(reversed(shape[:dim]))
+            vel = vel.reshape((vel.shape[0], *grid, dim))
+            ksum = ksum.reshape((ksum.shape[0], *grid))
+        return VelocityRecord(
+            name=str(raw["name"]),
+            t=np.asarray(raw["t"], dtype=np.float64),
+            points=np.asarray(raw["points"], dtype=np.float64),
+            velocity=vel,
+            kernel_sum=ksum,
+            shape=shape if window else None,
+        )
+
+
+class _Gauge:
+    """What every gauge class declares besides its schema: how its core records become arrays
+    of :class:`~watersim.flume.FlumeGauges`, and its columns of ``gauges.csv``."""
+
+    TAG: ClassVar[str]
+
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        """Turn this kind's core records ``raws`` into arrays on ``gauges``: by default each
+        field of each record as an array in ``gauges.records[name]``."""
+        for raw in raws:
+            gauges.records[str(raw["name"])] = {
+                key: np.asarray(value) for key, value in raw.items() if key not in ("type", "name")
+            }
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """This kind's columns of ``gauges.csv`` (none by default)."""
+        return []
+
 
 @dataclass(frozen=True)
-class ElevationGauge:
+class ElevationGauge(_Gauge):
     """Free-surface elevation on the vertical line through (x[, y]).
 
     Attributes:
@@ -95,9 +164,65 @@ class ElevationGauge:
         return {"type": self.TAG, "name": name, "position": pos, "method": self.method,
                 "interval": interval}
 
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        """``names``, ``x``, ``y``, ``still_depth``, ``t``, ``elevation_raw``, ``zero_offsets``
+        and ``elevation``: every gauge on the first gauge's times."""
+        setup = gauges.setup
+        depth = setup.flume.depth
+        specs = {s["name"]: s for s in setup._gauge_specs()}
+        gauges.names = tuple(str(r["name"]) for r in raws)
+        gauges.x = np.array([specs[n]["position"][0] for n in gauges.names], dtype=np.float64)
+        gauges.y = (
+            np.array([specs[n]["position"][1] for n in gauges.names], dtype=np.float64)
+            if setup.dim == 3 else None
+        )
+        gauges.still_depth = np.asarray(setup.still_depth(gauges.x, gauges.y), dtype=np.float64)
+        if raws:
+            t = np.asarray(raws[0]["t"], dtype=np.float64)
+            cols = []
+            for r in raws:
+                tr = np.asarray(r["t"], dtype=np.float64)
+                zr = np.asarray(r["z"], dtype=np.float64) - depth
+                if tr.shape != t.shape or not np.array_equal(tr, t):
+                    zr = np.interp(t, tr, zr) if tr.size else np.full(t.shape, np.nan)
+                cols.append(zr)
+            gauges.t = t
+            gauges.elevation_raw = np.stack(cols, axis=1)
+        else:
+            gauges.t = np.zeros(0)
+            gauges.elevation_raw = np.zeros((0, 0))
+        gauges.zero_offsets = cls._zero_offsets(gauges)
+        gauges.elevation = gauges.elevation_raw - gauges.zero_offsets
+
+    @staticmethod
+    def _zero_offsets(gauges: FlumeGauges) -> npt.NDArray[np.float64]:
+        """Each gauge's still-water reading (t = 0): what it reads above the SWL at rest.
+
+        A surface gauge reads the still water a fraction of dp off the SWL (the kernel method
+        finds where the kernel volume sum falls to 0.5, about 0.4 dp above the top particle
+        row's nominal surface). Like a laboratory gauge zeroed in still water before the run,
+        each gauge's reading at t = 0 is subtracted; gauges too shallow at rest (less than 3 dp
+        of water, or dry) take the median offset of the others (0 if none).
+        """
+        n = len(gauges.names)
+        if n == 0 or gauges.t.size == 0 or abs(gauges.t[0]) > 1e-12:
+            return np.zeros(n)
+        first = gauges.elevation_raw[0]
+        deep = (gauges.still_depth > 3.0 * float(gauges.setup.dp)) & np.isfinite(first)  # type: ignore[arg-type]
+        if not np.any(deep):
+            return np.zeros(n)
+        fallback = float(np.median(first[deep]))
+        return np.where(deep, first, fallback)
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """One column per gauge: eta above the SWL [m], ``nan`` when dry."""
+        return [(name, gauges.t, gauges.elevation[:, j]) for j, name in enumerate(gauges.names)]
+
 
 @dataclass(frozen=True)
-class VelocityProbe:
+class VelocityProbe(_Gauge):
     """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
 
     Attributes:
@@ -144,9 +269,15 @@ class VelocityProbe:
         return {"type": self.TAG, "name": name, "points": [list(p) for p in self.points],
                 "interval": interval}
 
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        """``velocity``: a :class:`VelocityRecord` per probe."""
+        dim = gauges.setup.dim
+        gauges.velocity = {str(r["name"]): VelocityRecord.read(r, dim, window=False) for r in raws}
+
 
 @dataclass(frozen=True)
-class VelocityWindow:
+class VelocityWindow(_Gauge):
     """PIV-like window: velocity on a regular grid of ``n`` points per axis over ``[min, max]``.
 
     In 2D ``min``, ``max`` are (x, z) and ``n`` is (nx, nz); in 3D (x, y, z) and (nx, ny, nz)
@@ -203,9 +334,15 @@ class VelocityWindow:
         return {"type": self.TAG, "name": name, "min": list(self.min), "max": list(self.max),
                 "n": list(self.n), "interval": interval}
 
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        """``windows``: a :class:`VelocityRecord` per window."""
+        dim = gauges.setup.dim
+        gauges.windows = {str(r["name"]): VelocityRecord.read(r, dim, window=True) for r in raws}
+
 
 @dataclass(frozen=True)
-class RunupGauge:
+class RunupGauge(_Gauge):
     """Run-up: the highest wet point along a segment laid just above the beach (``end`` uphill);
     records its vertical position.
 
@@ -252,15 +389,41 @@ class RunupGauge:
         return {"type": self.TAG, "name": name, "start": list(self.start),
                 "end": list(self.end), "method": self.method, "interval": interval}
 
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        """``runup_name``, ``runup_t``, ``runup_raw``, ``runup_offset`` and ``runup`` (zeroed on
+        the reading at rest), None without a run-up gauge."""
+        depth = gauges.setup.flume.depth
+        gauges.runup_offset = 0.0
+        if not raws:
+            gauges.runup_name, gauges.runup_t, gauges.runup, gauges.runup_raw = (
+                None, None, None, None)
+            return
+        gauges.runup_name = str(raws[0]["name"])
+        gauges.runup_t = np.asarray(raws[0]["t"], dtype=float)
+        raw = np.asarray(raws[0]["z"], dtype=np.float64) - depth
+        if gauges.runup_t.size and abs(gauges.runup_t[0]) <= 1e-12 and np.isfinite(raw[0]):
+            gauges.runup_offset = float(raw[0])
+        gauges.runup_raw = raw
+        gauges.runup = raw - gauges.runup_offset
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """The run-up: elevation above the SWL [m]."""
+        if gauges.runup_name is None or gauges.runup is None or gauges.runup_t is None:
+            return []
+        return [(gauges.runup_name, gauges.runup_t, gauges.runup)]
+
 
 Gauge = ElevationGauge | VelocityProbe | VelocityWindow
 """The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
 
 SCENE_GAUGE_TYPES: tuple[type, ...] = typing.get_args(Gauge)
 
-GAUGE_TYPES: dict[str, type] = {cls.TAG: cls for cls in (*SCENE_GAUGE_TYPES, RunupGauge)}
+GAUGE_TYPES: dict[str, type[_Gauge]] = {
+    cls.TAG: cls for cls in (*SCENE_GAUGE_TYPES, RunupGauge)
+}
 """Every gauge class by its ``TAG`` (the core's gauge ``type``)."""
-
 
 
 def elevation_gauges_between(

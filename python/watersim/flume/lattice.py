@@ -1,4 +1,5 @@
 """The particle lattice: how many layers the core fills, and the spacing that fills a depth."""
+
 from __future__ import annotations
 
 import math
@@ -11,7 +12,6 @@ whole number: the core then fills exactly that many layers (see :func:`lattice_l
 MAX_PARTICLES = 1e10
 """Fluid particle count past which a flume is refused before anything is derived from dp (far
 beyond any machine's memory; the core's estimate then refuses what does not fit this one)."""
-
 
 
 def lattice_layers(extent: float, dp: float) -> int:

@@ -1,4 +1,5 @@
 """The wave-makers (piston, flap) and the resolved paddle law the core runs."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

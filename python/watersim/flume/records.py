@@ -1,40 +1,22 @@
 """The gauge records of a flume run as NumPy arrays, and their CSV file."""
+
 from __future__ import annotations
 
 import csv
 import math
 import os
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
+from .gauges import GAUGE_TYPES, Series, VelocityRecord
+
 if TYPE_CHECKING:
     from .scene import FlumeScene
 
-
-@dataclass(frozen=True)
-class VelocityRecord:
-    """A velocity probe or window record.
-
-    Attributes:
-        name: the gauge name.
-        t: sample times (n,) [s].
-        points: sampled points (p, dim) [m].
-        velocity: (n, p, dim) [m/s]; for windows reshaped to ``(n, *reversed(shape), dim)``.
-        kernel_sum: (n, p) kernel volume sum (about 1 in the water, 0 outside): mask samples
-            with ``kernel_sum < 0.5`` as dry. Windows: ``(n, *reversed(shape))``.
-        shape: the window's points per axis (x first), or None for probes.
-    """
-
-    name: str
-    t: npt.NDArray[np.float64]
-    points: npt.NDArray[np.float64]
-    velocity: npt.NDArray[np.float64]
-    kernel_sum: npt.NDArray[np.float64]
-    shape: tuple[int, ...] | None
+__all__ = ["FlumeGauges", "VelocityRecord"]
 
 
 class FlumeGauges:
@@ -54,88 +36,35 @@ class FlumeGauges:
         runup_name: the run-up gauge's name, or None.
         velocity: velocity probes by name (:class:`VelocityRecord`).
         windows: velocity windows by name (:class:`VelocityRecord`).
+        records: by name, the records of gauge kinds that declare no arrays of their own
+            (each field of the core's record as an array).
+
+    Each gauge class in :data:`~watersim.flume.gauges.GAUGE_TYPES` turns its kind's records
+    into these arrays (its ``read``) and names its columns of :meth:`to_csv` (its
+    ``csv_series``).
     """
 
+    names: tuple[str, ...]
+    x: npt.NDArray[np.float64]
+    y: npt.NDArray[np.float64] | None
+    still_depth: npt.NDArray[np.float64]
+    t: npt.NDArray[np.float64]
+    elevation_raw: npt.NDArray[np.float64]
+    zero_offsets: npt.NDArray[np.float64]
+    elevation: npt.NDArray[np.float64]
+    runup_name: str | None
+    runup_t: npt.NDArray[np.float64] | None
+    runup_raw: npt.NDArray[np.float64] | None
+    runup_offset: float
+    runup: npt.NDArray[np.float64] | None
+    velocity: dict[str, VelocityRecord]
+    windows: dict[str, VelocityRecord]
+
     def __init__(self, setup: FlumeScene, records: list[dict[str, Any]]) -> None:
-        depth = setup.flume.depth
         self.setup = setup
-        elevation = [r for r in records if r["type"] == "elevation"]
-        specs = {s["name"]: s for s in setup._gauge_specs()}
-        self.names: tuple[str, ...] = tuple(str(r["name"]) for r in elevation)
-        self.x = np.array([specs[n]["position"][0] for n in self.names], dtype=np.float64)
-        self.y = (
-            np.array([specs[n]["position"][1] for n in self.names], dtype=np.float64)
-            if setup.dim == 3 else None
-        )
-        self.still_depth = np.asarray(setup.still_depth(self.x, self.y), dtype=np.float64)
-        if elevation:
-            t = np.asarray(elevation[0]["t"], dtype=np.float64)
-            cols = []
-            for r in elevation:
-                tr = np.asarray(r["t"], dtype=np.float64)
-                zr = np.asarray(r["z"], dtype=np.float64) - depth
-                if tr.shape != t.shape or not np.array_equal(tr, t):
-                    zr = np.interp(t, tr, zr) if tr.size else np.full(t.shape, np.nan)
-                cols.append(zr)
-            self.t = t
-            self.elevation_raw = np.stack(cols, axis=1)
-        else:
-            self.t = np.zeros(0)
-            self.elevation_raw = np.zeros((0, 0))
-        self.zero_offsets = self._zero_offsets(setup)
-        self.elevation = self.elevation_raw - self.zero_offsets
-        runup = [r for r in records if r["type"] == "runup"]
-        self.runup_offset = 0.0
-        if runup:
-            self.runup_name: str | None = str(runup[0]["name"])
-            self.runup_t: npt.NDArray[np.float64] | None = np.asarray(runup[0]["t"], dtype=float)
-            raw = np.asarray(runup[0]["z"], dtype=np.float64) - depth
-            if self.runup_t.size and abs(self.runup_t[0]) <= 1e-12 and np.isfinite(raw[0]):
-                self.runup_offset = float(raw[0])
-            self.runup_raw: npt.NDArray[np.float64] | None = raw
-            self.runup: npt.NDArray[np.float64] | None = raw - self.runup_offset
-        else:
-            self.runup_name, self.runup_t, self.runup, self.runup_raw = None, None, None, None
-        self.velocity: dict[str, VelocityRecord] = {}
-        self.windows: dict[str, VelocityRecord] = {}
-        for r in records:
-            if r["type"] not in ("velocity", "window"):
-                continue
-            vel = np.asarray(r["velocity"], dtype=np.float64)
-            ksum = np.asarray(r["kernel_sum"], dtype=np.float64)
-            shape = tuple(int(v) for v in r.get("shape") or ()) or None
-            if r["type"] == "window" and shape is not None:
-                grid = tuple(reversed(shape[: setup.dim]))
-                vel = vel.reshape((vel.shape[0], *grid, setup.dim))
-                ksum = ksum.reshape((ksum.shape[0], *grid))
-            rec = VelocityRecord(
-                name=str(r["name"]),
-                t=np.asarray(r["t"], dtype=np.float64),
-                points=np.asarray(r["points"], dtype=np.float64),
-                velocity=vel,
-                kernel_sum=ksum,
-                shape=shape if r["type"] == "window" else None,
-            )
-            (self.windows if r["type"] == "window" else self.velocity)[rec.name] = rec
-
-    def _zero_offsets(self, setup: FlumeScene) -> npt.NDArray[np.float64]:
-        """Each gauge's still-water reading (t = 0): what it reads above the SWL at rest.
-
-        A surface gauge reads the still water a fraction of dp off the SWL (the kernel method
-        finds where the kernel volume sum falls to 0.5, about 0.4 dp above the top particle
-        row's nominal surface). Like a laboratory gauge zeroed in still water before the run,
-        each gauge's reading at t = 0 is subtracted; gauges too shallow at rest (less than 3 dp
-        of water, or dry) take the median offset of the others (0 if none).
-        """
-        n = len(self.names)
-        if n == 0 or self.t.size == 0 or abs(self.t[0]) > 1e-12:
-            return np.zeros(n)
-        first = self.elevation_raw[0]
-        deep = (self.still_depth > 3.0 * float(setup.dp)) & np.isfinite(first)  # type: ignore[arg-type]
-        if not np.any(deep):
-            return np.zeros(n)
-        fallback = float(np.median(first[deep]))
-        return np.where(deep, first, fallback)
+        self.records: dict[str, dict[str, npt.NDArray[Any]]] = {}
+        for tag, cls in GAUGE_TYPES.items():
+            cls.read(self, [r for r in records if r["type"] == tag])
 
     @property
     def bed_elevation(self) -> npt.NDArray[np.float64]:
@@ -191,33 +120,39 @@ class FlumeGauges:
             return 0.0
         return float(gauge.start[-1]) - self.setup.flume.depth
 
+    def _csv_series(self) -> list[Series]:
+        return [s for cls in GAUGE_TYPES.values() for s in cls.csv_series(self)]
+
     def columns(self) -> list[str]:
-        """Column names of :meth:`to_csv`: ``t``, the elevation gauges, the run-up gauge."""
-        cols = ["t", *self.names]
-        if self.runup_name is not None:
-            cols.append(self.runup_name)
-        return cols
+        """Column names of :meth:`to_csv`: ``t``, the elevation gauges, the run-up gauge (and
+        the columns of any other gauge kind that declares some)."""
+        return ["t", *(name for name, _, _ in self._csv_series())]
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
         """Write ``t``, one column per elevation gauge (eta above the SWL [m], ``nan`` when dry)
-        and the run-up (elevation above the SWL [m]) on the elevation gauges' times.
+        and the run-up (elevation above the SWL [m]) on the elevation gauges' times (on the
+        first column's own times when the elevation gauges have none yet).
 
         Written to a temporary file first and renamed, so a reader never sees half a file.
         """
         out = Path(path)
         tmp = out.with_name(out.name + ".tmp")
-        runup = self.runup_on(self.t) if self.t.size else None
+        series = self._csv_series()
+        base = self.t if self.t.size else next((ts for _, ts, _ in series if ts.size), self.t)
+        cols = [c for c in (_on(base, ts, values) for _, ts, values in series) if c is not None]
         with open(tmp, "w", newline="", encoding="utf-8") as f:
             writer = csv.writer(f)
             writer.writerow(self.columns())
-            if self.t.size == 0 and self.runup is not None and self.runup_t is not None:
-                for tk, rk in zip(self.runup_t, self.runup, strict=True):
-                    writer.writerow([repr(float(tk)), repr(float(rk))])
-            for i, tk in enumerate(self.t):
-                row = [repr(float(tk))] + [repr(float(v)) for v in self.elevation[i]]
-                if runup is not None:
-                    row.append(repr(float(runup[i])))
-                writer.writerow(row)
+            for i, tk in enumerate(base):
+                writer.writerow([repr(float(tk))] + [repr(float(c[i])) for c in cols])
         tmp.replace(out)
         return out
 
+
+def _on(t: npt.NDArray[np.float64], ts: npt.NDArray[np.float64],
+        values: npt.NDArray[np.float64]) -> npt.NDArray[np.float64] | None:
+    """``values`` sampled at ``ts`` [s], interpolated on ``t`` (as they are on the same
+    times), None without samples."""
+    if ts.shape == t.shape and np.array_equal(ts, t):
+        return values
+    return np.interp(t, ts, values) if ts.size else None

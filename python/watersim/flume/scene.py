@@ -1,4 +1,5 @@
 """A flume and one run in it: the checked scene, its derived quantities and the core scene."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -109,7 +110,6 @@ class Flume:
         Same arguments as :meth:`scene`.
         """
         return self.scene(wave, **kwargs).build()
-
 
 
 @dataclass(frozen=True, kw_only=True)

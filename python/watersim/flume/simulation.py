@@ -1,4 +1,5 @@
 """A flume run: the simulation with its gauges, overturn watch and analysis."""
+
 from __future__ import annotations
 
 import os

@@ -1,4 +1,5 @@
 """The waves a flume makes: regular, irregular, solitary, or a tabulated paddle motion."""
+
 from __future__ import annotations
 
 import math
