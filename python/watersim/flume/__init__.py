@@ -55,6 +55,7 @@ Modules, one concern each: :mod:`.bed` (beaches, damping zone), :mod:`.waves`, :
 from .analyse import analyse_flume
 from .bed import DampingZone, MeshBeach, PlaneBeach, ProfileBeach
 from .gauges import (
+    GAUGE_TYPES,
     SURFACE_METHODS,
     ElevationGauge,
     RunupGauge,
@@ -65,14 +66,17 @@ from .gauges import (
 from .lattice import lattice_dp, lattice_layers
 from .paddles import RAMPS, Flap, Piston, flap_height_to_stroke_hinged
 from .records import FlumeGauges, VelocityRecord
-from .scene import Flume, FlumeScene
+from .scene import CHOICES, TAGS, Flume, FlumeScene
 from .simulation import FlumeSimulation
 from .waves import SPECTRA, IrregularWave, RegularWave, SolitaryWave, TabulatedMotion
 
 __all__ = [
+    "CHOICES",
+    "GAUGE_TYPES",
     "RAMPS",
     "SPECTRA",
     "SURFACE_METHODS",
+    "TAGS",
     "DampingZone",
     "ElevationGauge",
     "Flap",

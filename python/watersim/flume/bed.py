@@ -7,7 +7,7 @@ import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -26,6 +26,11 @@ Profile = tuple[Sequence[float], Sequence[float]]
 
 class _Bed:
     """What every beach tells the flume (each beach overrides what differs)."""
+
+    TAG: ClassVar[str]
+    """The beach's ``type`` in a scene file."""
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
+    """The allowed values of the beach's string fields."""
 
     def wall_top(self, height: float) -> float:
         """The tank height ``height`` [m] raised, if need be, to the bed's highest point."""
@@ -77,6 +82,8 @@ class PlaneBeach(_Bed):
     toe: float
     slope: float
 
+    TAG: ClassVar[str] = "plane"
+
     def __post_init__(self) -> None:
         _set(self, "toe", _non_negative("beach.toe", self.toe))
         slope = _positive("beach.slope", self.slope)
@@ -120,6 +127,8 @@ class ProfileBeach(_Bed):
 
     x: tuple[float, ...]
     z: tuple[float, ...]
+
+    TAG: ClassVar[str] = "profile"
 
     def __post_init__(self) -> None:
         x = _finite_tuple("beach.x", self.x, 2)
@@ -199,6 +208,8 @@ class MeshBeach(_Bed):
     """(m, 3) triangles indexing :attr:`points`."""
     volume: float = dataclasses.field(init=False, repr=False, compare=False)
     """Volume enclosed by the mesh [m^3]."""
+
+    TAG: ClassVar[str] = "mesh"
 
     def __post_init__(self) -> None:
         _set(self, "scale", _positive("beach.scale", self.scale))

@@ -79,6 +79,8 @@ class _Gauge:
     of :class:`~watersim.flume.FlumeGauges`, and its columns of ``gauges.csv``."""
 
     TAG: ClassVar[str]
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
+    """The allowed values of the gauge's string fields."""
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
@@ -114,13 +116,14 @@ class ElevationGauge(_Gauge):
     interval: float | None = None
 
     TAG: ClassVar[str] = "elevation"
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": SURFACE_METHODS}
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     def __post_init__(self) -> None:
         _set(self, "x", _number("gauge.x", self.x))
         if self.y is not None:
             _set(self, "y", _number("gauge.y", self.y))
-        _choice("gauge.method", self.method, SURFACE_METHODS)
+        _choice("gauge.method", self.method, self.CHOICES["method"])
         _optional_name("gauge.name", self.name)
         if self.interval is not None:
             _set(self, "interval", _positive("gauge.interval", self.interval))
@@ -362,6 +365,7 @@ class RunupGauge(_Gauge):
     interval: float | None = None
 
     TAG: ClassVar[str] = "runup"
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": SURFACE_METHODS}
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     def __post_init__(self) -> None:
@@ -378,7 +382,7 @@ class RunupGauge(_Gauge):
                 raise SceneError("runup.end: must be uphill of start (higher z)")
             _set(self, "start", a)
             _set(self, "end", b)
-        _choice("runup.method", self.method, SURFACE_METHODS)
+        _choice("runup.method", self.method, self.CHOICES["method"])
         _optional_name("runup.name", self.name)
         if self.interval is not None:
             _set(self, "interval", _positive("runup.interval", self.interval))

@@ -36,6 +36,10 @@ class _Paddle:
     """What every wave-maker tells the scene (each class overrides what differs)."""
 
     kind: ClassVar[wt.Paddle]
+    """The core's paddle ``kind``, also the paddle's ``type`` in a scene file (:attr:`TAG`)."""
+    TAG: ClassVar[str]
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"ramp": RAMPS}
+    """The allowed values of the paddle's string fields."""
     ramp_periods: float
     ramp: str
 
@@ -95,12 +99,13 @@ class Piston(_Paddle):
     ramp: str = "linear"
 
     kind: ClassVar[wt.Paddle] = "piston"
+    TAG: ClassVar[str] = kind
 
     def __post_init__(self) -> None:
         if isinstance(self.order, bool) or self.order not in (1, 2):
             raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
-        _choice("paddle.ramp", self.ramp, RAMPS)
+        _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
 
 
 @dataclass(frozen=True)
@@ -121,12 +126,13 @@ class Flap(_Paddle):
 
     order: ClassVar[int] = 1
     kind: ClassVar[wt.Paddle] = "flap"
+    TAG: ClassVar[str] = kind
 
     def __post_init__(self) -> None:
         if self.hinge_z is not None:
             _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
-        _choice("paddle.ramp", self.ramp, RAMPS)
+        _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
 
     @property
     def hinge(self) -> float:
@@ -154,6 +160,9 @@ class Flap(_Paddle):
 
 
 Paddle = Piston | Flap
+
+PADDLE_TYPES: tuple[type, ...] = (Piston, Flap)
+"""The paddle classes a :class:`FlumeScene` takes."""
 
 
 def flap_height_to_stroke_hinged(

@@ -19,9 +19,22 @@ from .bed import BEACH_TYPES, Beach, DampingZone, _bed, _shoreline_segment
 from .checks import _TOL, _set, expected
 from .gauges import RUNUP_OFFSET_DP, SCENE_GAUGE_TYPES, Gauge, RunupGauge
 from .lattice import MAX_PARTICLES, _lattice_error, _whole, lattice_dp
-from .paddles import Flap, Paddle, PaddleLaw, Piston
+from .paddles import PADDLE_TYPES, Paddle, PaddleLaw, Piston
 from .simulation import FlumeSimulation
 from .waves import WAVE_TYPES, Wave
+
+MODEL_TYPES: tuple[type, ...] = (*BEACH_TYPES, *WAVE_TYPES, *PADDLE_TYPES, *SCENE_GAUGE_TYPES)
+"""The classes a field of a flume scene takes one of (beach, wave, paddle, gauges)."""
+
+TAGS: dict[type, str] = {cls: cls.TAG for cls in MODEL_TYPES}  # type: ignore[attr-defined]
+"""Each model class's ``type`` in a scene file (the class's ``TAG``)."""
+
+CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
+    (cls, field): values
+    for cls in (*MODEL_TYPES, RunupGauge)
+    for field, values in cls.CHOICES.items()  # type: ignore[attr-defined]
+}
+"""The allowed values of the models' string fields (each class's ``CHOICES``)."""
 
 
 @dataclass(frozen=True)
@@ -183,7 +196,7 @@ class FlumeScene(SceneBuilder):
             raise SceneError(f"flume: expected a Flume, got {self.flume!r}")
         if not isinstance(self.wave, WAVE_TYPES):
             raise SceneError(f"wave: expected {expected(WAVE_TYPES)}, got {self.wave!r}")
-        if not isinstance(self.paddle, (Piston, Flap)):
+        if not isinstance(self.paddle, PADDLE_TYPES):
             raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
         if isinstance(self.gauges, SCENE_GAUGE_TYPES):
             _set(self, "gauges", (self.gauges,))

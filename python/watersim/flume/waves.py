@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -34,6 +34,11 @@ exist, and Goring's paddle motion for it is meaningless."""
 class _Wave:
     """What every wave tells the scene: its paddle law, defaults and checks (each wave overrides
     what differs)."""
+
+    TAG: ClassVar[str]
+    """The wave's ``type`` in a scene file."""
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
+    """The allowed values of the wave's string fields."""
 
     @property
     def design_height(self) -> float | None:
@@ -75,6 +80,8 @@ class RegularWave(_Wave):
     height: float
     period: float
     phase: float = 0.0
+
+    TAG: ClassVar[str] = "regular"
 
     def __post_init__(self) -> None:
         _set(self, "height", _positive("wave.height", self.height))
@@ -157,10 +164,13 @@ class IrregularWave(_Wave):
     frequency_range: tuple[float, float] = (0.5, 3.0)
     repeat_period: float | None = None
 
+    TAG: ClassVar[str] = "irregular"
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"spectrum": tuple(SPECTRA)}
+
     def __post_init__(self) -> None:
         _set(self, "hs", _positive("wave.hs", self.hs))
         _set(self, "tp", _positive("wave.tp", self.tp))
-        _choice("wave.spectrum", self.spectrum, tuple(SPECTRA))
+        _choice("wave.spectrum", self.spectrum, self.CHOICES["spectrum"])
         gamma = _number("wave.gamma", self.gamma)
         if gamma < 1.0:
             raise SceneError(f"wave.gamma: must be >= 1, got {self.gamma!r}")
@@ -242,6 +252,8 @@ class SolitaryWave(_Wave):
     delay: float = 0.0
     samples: int = 1001
 
+    TAG: ClassVar[str] = "solitary"
+
     def __post_init__(self) -> None:
         _set(self, "height", _positive("wave.height", self.height))
         trunc = _positive("wave.truncation", self.truncation)
@@ -313,6 +325,8 @@ class TabulatedMotion(_Wave):
 
     t: tuple[float, ...]
     x: tuple[float, ...]
+
+    TAG: ClassVar[str] = "tabulated"
 
     def __post_init__(self) -> None:
         t = _finite_tuple("wave.t", self.t, 2)
