@@ -474,10 +474,7 @@ class FlumeScene(SceneBuilder):
         # an absurd wave overflows the theory's formulas: the non-finite excursion that results
         # is refused, naming the wave, by _validate_geometry
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            return self._make_law()
-
-    def _make_law(self) -> PaddleLaw:
-        return self.wave.law(self.paddle, self.flume.depth, self.gravity)
+            return self.wave.law(self.paddle, self.flume.depth, self.gravity)
 
     @property
     def back_x(self) -> float:
