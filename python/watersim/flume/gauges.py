@@ -55,6 +55,11 @@ class VelocityRecord:
     shape: tuple[int, ...] | None
 
     @staticmethod
+    def by_name(raws: list[dict[str, Any]], dim: int, window: bool) -> dict[str, VelocityRecord]:
+        """The records ``raws`` (see :meth:`read`) by name."""
+        return {str(r["name"]): VelocityRecord.read(r, dim, window) for r in raws}
+
+    @staticmethod
     def read(raw: dict[str, Any], dim: int, window: bool) -> VelocityRecord:
         """The core's probe (or, ``window``, window) record ``raw`` of a ``dim``-D flume."""
         vel = np.asarray(raw["velocity"], dtype=np.float64)
@@ -81,6 +86,19 @@ class _Gauge:
     TAG: ClassVar[str]
     CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
     """The allowed values of the gauge's string fields."""
+
+    name: str | None
+    interval: float | None
+
+    def _check_name_and_interval(self, prefix: str) -> None:
+        """The record name and the sampling interval every gauge has (``prefix.name``, ...)."""
+        _optional_name(f"{prefix}.name", self.name)
+        if self.interval is not None:
+            _set(self, "interval", _positive(f"{prefix}.interval", self.interval))
+
+    def default_name(self, scene: FlumeScene, index: int) -> str:
+        """The name of the ``index``-th unnamed gauge of this kind: ``TAG{index}``."""
+        return f"{self.TAG}{index}"
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
@@ -124,9 +142,7 @@ class ElevationGauge(_Gauge):
         if self.y is not None:
             _set(self, "y", _number("gauge.y", self.y))
         _choice("gauge.method", self.method, self.CHOICES["method"])
-        _optional_name("gauge.name", self.name)
-        if self.interval is not None:
-            _set(self, "interval", _positive("gauge.interval", self.interval))
+        self._check_name_and_interval("gauge")
 
     def y_in(self, scene: FlumeScene) -> float:
         """y of the gauge line in a 3D flume [m] (the centre line when not given)."""
@@ -253,13 +269,7 @@ class VelocityProbe(_Gauge):
         if len({len(p) for p in pts}) != 1 or len(pts[0]) not in (2, 3):
             raise SceneError("gauge.points: every point needs 2 (x, z) or 3 (x, y, z) coordinates")
         _set(self, "points", pts)
-        _optional_name("gauge.name", self.name)
-        if self.interval is not None:
-            _set(self, "interval", _positive("gauge.interval", self.interval))
-
-    def default_name(self, scene: FlumeScene, index: int) -> str:
-        """``velocity{index}``, ``index`` counting the probes."""
-        return f"velocity{index}"
+        self._check_name_and_interval("gauge")
 
     def along_x(self) -> list[float]:
         return [p[0] for p in self.points]
@@ -275,8 +285,7 @@ class VelocityProbe(_Gauge):
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``velocity``: a :class:`VelocityRecord` per probe."""
-        dim = gauges.setup.dim
-        gauges.velocity = {str(r["name"]): VelocityRecord.read(r, dim, window=False) for r in raws}
+        gauges.velocity = VelocityRecord.by_name(raws, gauges.setup.dim, window=False)
 
 
 @dataclass(frozen=True)
@@ -318,13 +327,7 @@ class VelocityWindow(_Gauge):
         _set(self, "min", lo)
         _set(self, "max", hi)
         _set(self, "n", tuple(int(c) for c in counts))
-        _optional_name("gauge.name", self.name)
-        if self.interval is not None:
-            _set(self, "interval", _positive("gauge.interval", self.interval))
-
-    def default_name(self, scene: FlumeScene, index: int) -> str:
-        """``window{index}``, ``index`` counting the windows."""
-        return f"window{index}"
+        self._check_name_and_interval("gauge")
 
     def along_x(self) -> list[float]:
         return []
@@ -340,8 +343,7 @@ class VelocityWindow(_Gauge):
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``windows``: a :class:`VelocityRecord` per window."""
-        dim = gauges.setup.dim
-        gauges.windows = {str(r["name"]): VelocityRecord.read(r, dim, window=True) for r in raws}
+        gauges.windows = VelocityRecord.by_name(raws, gauges.setup.dim, window=True)
 
 
 @dataclass(frozen=True)
@@ -383,9 +385,7 @@ class RunupGauge(_Gauge):
             _set(self, "start", a)
             _set(self, "end", b)
         _choice("runup.method", self.method, self.CHOICES["method"])
-        _optional_name("runup.name", self.name)
-        if self.interval is not None:
-            _set(self, "interval", _positive("runup.interval", self.interval))
+        self._check_name_and_interval("runup")
 
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         """The core's gauge JSON (the segment resolved: see :attr:`FlumeScene.runup_gauge`)."""
