@@ -285,7 +285,7 @@ class VelocityProbe(_Gauge):
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``velocity``: a :class:`VelocityRecord` per probe."""
-        gauges.velocity = VelocityRecord.by_name(raws, gauges.setup.dim, window=False)
+        gauges.velocity = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=False)
 
 
 @dataclass(frozen=True)
@@ -343,7 +343,7 @@ class VelocityWindow(_Gauge):
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``windows``: a :class:`VelocityRecord` per window."""
-        gauges.windows = VelocityRecord.by_name(raws, gauges.setup.dim, window=True)
+        gauges.windows = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=True)
 
 
 @dataclass(frozen=True)
@@ -422,10 +422,10 @@ class RunupGauge(_Gauge):
 Gauge = ElevationGauge | VelocityProbe | VelocityWindow
 """The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
 
-SCENE_GAUGE_TYPES: tuple[type, ...] = typing.get_args(Gauge)
+SCENE_GAUGE_TYPES: tuple[type[_Gauge], ...] = typing.get_args(Gauge)
 
 GAUGE_TYPES: dict[str, type[_Gauge]] = {
-    cls.TAG: cls for cls in (*SCENE_GAUGE_TYPES, RunupGauge)
+    cls.TAG: cls for cls in typing.get_args(Gauge | RunupGauge)
 }
 """Every gauge class by its ``TAG`` (the core's gauge ``type``)."""
 
