@@ -49,7 +49,8 @@ beyond second-order theory or breaking at the paddle gives a
 Modules, one concern each: :mod:`.bed` (beaches, damping zone), :mod:`.waves`, :mod:`.paddles`
 (wave-makers and the resolved paddle law), :mod:`.gauges`, :mod:`.scene` (:class:`Flume`,
 :class:`FlumeScene`), :mod:`.records` (gauge records, CSV), :mod:`.simulation` and
-:mod:`.analyse`; :mod:`.lattice` holds the particle lattice's arithmetic.
+:mod:`.analyse`; :mod:`.lattice` holds the particle lattice's arithmetic, :mod:`.checks` the
+small input checks the models share.
 """
 
 from .analyse import analyse_flume

@@ -39,9 +39,11 @@ def _strictly_increasing(name: str, values: Sequence[float]) -> None:
 
 
 def _optional_name(name: str, value: Any) -> None:
-    if value is not None and (not isinstance(value, str) or not value.strip()):
+    if value is None:
+        return
+    if not isinstance(value, str) or not value.strip():
         raise SceneError(f"{name}: must be a non-empty string, got {value!r}")
-    if isinstance(value, str) and ("," in value or "\n" in value):
+    if "," in value or "\n" in value:
         raise SceneError(f"{name}: must not contain commas or line breaks, got {value!r}")
 
 
