@@ -47,18 +47,8 @@ else:  # pragma: no cover - Python 3.10
 
 from . import overrides
 from ._core import SceneError
-from .flume import (
-    RAMPS,
-    SPECTRA,
-    SURFACE_METHODS,
-    ElevationGauge,
-    Flap,
-    FlumeScene,
-    IrregularWave,
-    MeshBeach,
-    Piston,
-    RunupGauge,
-)
+from . import flume
+from .flume import FlumeScene, MeshBeach
 from .scenes import (
     BOUNDARY_MODELS,
     DIFFUSION_MODELS,
@@ -102,13 +92,10 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SceneBuilder, "integrator"): INTEGRATORS,
     (SceneBuilder, "boundary"): BOUNDARY_MODELS,
     (SceneBuilder, "force_precision"): FORCE_PRECISIONS,
-    (IrregularWave, "spectrum"): tuple(SPECTRA),
-    (Piston, "ramp"): RAMPS,
-    (Flap, "ramp"): RAMPS,
-    (ElevationGauge, "method"): SURFACE_METHODS,
-    (RunupGauge, "method"): SURFACE_METHODS,
+    **flume.CHOICES,
 }
-"""Allowed values of string fields, for the reference (the builders check them)."""
+"""Allowed values of string fields, for the reference (the builders check them; the flume
+models' rows are each class's own ``CHOICES``)."""
 
 
 class SceneFileError(SceneError):
@@ -225,43 +212,9 @@ def _object_fields(cls: type) -> Iterator[tuple[str, Any, bool]]:
             yield name, hint, in_sequence
 
 
-def _choices(classes: Sequence[type]) -> list[tuple[type, ...]]:
-    """Every field of these classes, and of the objects within them, that takes one of several
-    classes: the classes it takes, in the order of its type hint."""
-    out: list[tuple[type, ...]] = []
-    seen: set[type] = set()
-    todo = list(classes)
-    while todo:
-        cls = todo.pop(0)
-        if cls in seen:
-            continue
-        seen.add(cls)
-        for _name, hint, _in_sequence in _object_fields(cls):
-            members = _dataclasses_in(hint)
-            if len(members) > 1:
-                out.append(tuple(members))
-            todo.extend(members)
-    return out
-
-
-def _tags(choices: Sequence[tuple[type, ...]]) -> dict[type, str]:
-    """Each class of a choice by its tag: the first word of its name, lower case
-    (``PlaneBeach``: ``"plane"``), or its last word where a class before it in the same choice
-    has that first word (``VelocityWindow`` after ``VelocityProbe``: ``"window"``)."""
-    tags: dict[type, str] = {}
-    for members in choices:
-        taken: set[str] = set()
-        for cls in members:
-            words = [w.lower() for w in re.findall(r"[A-Z][a-z0-9]*", cls.__name__)]
-            tag = words[0] if words[0] not in taken else words[-1]
-            taken.add(tag)
-            tags[cls] = tag
-    return tags
-
-
-TAGS: dict[type, str] = _tags(_choices(list(SCENE_TYPES.values())))
+TAGS: dict[type, str] = flume.TAGS
 """The ``type`` key of a table whose field takes one of several classes (a beach, a wave, a
-paddle, a gauge), derived from the builders' type hints by :func:`_tags`."""
+paddle, a gauge): each model class's own ``TAG``."""
 
 
 # ------------------------------------------------------------------------------------------------
