@@ -70,7 +70,8 @@ def test_a_depth_that_is_not_whole_layers_is_refused_with_two_that_are() -> None
 
 
 def test_the_irregular_run_that_lost_5_mm_of_water_is_refused() -> None:
-    """dp = 0.015 in d = 0.2 m filled 0.195 m (docs/irregular): now refused."""
+    """dp = 0.015 in d = 0.2 m filled 0.195 m (an irregular-wave run of
+    docs/irregular, since removed): now refused."""
     with pytest.raises(ws.SceneError, match=r"^dp: .*0\.195 m deep"):
         _flat(0.2, 0.015)
 

@@ -253,7 +253,7 @@ def write_report(
     lines += [
         "",
         "Each case runs at several resolutions (particles per characteristic length, so",
-        "dp = length / resolution; for the wave flumes, since 2026-11-30 10:00 UTC, snapped to",
+        "dp = length / resolution; for the wave flumes snapped to",
         "depth / round(depth / dp) so the water is whole particle layers deep: each run's `dp`",
         "is the one it used). Errors are fractions (0.05 = 5 %) unless the name ends in",
         "`_m` (metres) or `_phase` (radians). The convergence order is the least-squares slope of",
