@@ -169,9 +169,9 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
                 // Fluid fills every lattice site outside the solids that is not a wall site: the
                 // water then has the geometry's volume, and fluid and wall particles sit a
                 // lattice spacing apart as at the tank's faces. (Keeping fluid dp/2 off a
-                // sloping bed, as before 2026-11-30, left an empty strip dp/2 thick along it,
+                // sloping bed instead leaves an empty strip dp/2 thick along it,
                 // which walls that do not hold the water off, Adami's, let the water fill: the
-                // level over a beach then fell by a fraction of dp at the start.)
+                // level over a beach then falls by a fraction of dp at the start.)
                 if solids.iter().any(|s| s.signed_distance(p) < 0.0) {
                     continue;
                 }

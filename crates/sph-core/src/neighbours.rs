@@ -26,7 +26,7 @@ pub const GROUP_MOVING: usize = 1;
 pub const GROUP_FLUID: usize = 2;
 
 /// Particles per task of the sort's key pass: 4096 left the 2D dam break's 20,000 fluid
-/// particles five tasks, split two and three between two threads (Session 16).
+/// particles five tasks, split two and three between two threads (phase timers).
 const KEY_CHUNK: usize = 1024;
 
 /// [`CellGrid::sort_group`] sorts only the particles that changed cell while they are at most
@@ -43,8 +43,8 @@ const MOVER_SHARE: usize = 8;
 /// water's length, with the vertical fastest it shifts at most a column of the water's depth.
 /// In the 2D dam break's developed flow (steps 3,000-3,300) the moved blocks per step fell from
 /// 61 to 35 of 164 and the sort from 98 to 69 us per step on one thread and from 168 to 62 on
-/// two, where it had been the one phase slower on two threads than on one (docs/benchmarks.md,
-/// Session 17). The force loop's cost does not depend on the order.
+/// two, where it had been the one phase slower on two threads than on one (phase timers,
+/// see [`crate::phases`]). The force loop's cost does not depend on the order.
 #[inline(always)]
 fn axis<D: Dim>(k: usize) -> usize {
     D::DIM - 1 - k

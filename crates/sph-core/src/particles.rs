@@ -76,7 +76,7 @@ pub const NOT_MOVED: u32 = u32::MAX;
 /// Serial: a compare per slot (4 bytes read), which one core does in less time than a
 /// fork-join of two threads takes. 2D dam break, 21,000 fluid particles: 2.4-2.8 us per sort
 /// on one or two threads; the parallel loop it replaces took 11-12 us on one and 25-28 us on
-/// two (docs/benchmarks.md, Session 11).
+/// two (phase timers, see [`crate::phases`]).
 pub fn mark_moved_blocks(perm: &[u32], start: usize, ranks: &mut [u32], moved: &mut Vec<u32>) -> usize {
     let ranks = &mut ranks[..perm.len().div_ceil(PERMUTE_BLOCK)];
     moved.clear();
@@ -203,7 +203,7 @@ impl Record {
 /// one gathers each moved block's slots of all seven arrays into its record in `scratch`, the
 /// other copies the records back. Array by array ([`permute`]) that is fourteen fork-joins,
 /// each a wake-up of the other threads for a loop of a few microseconds: in the 2D dam break
-/// on two threads the permutation took longer than on one (docs/benchmarks.md, Session 15).
+/// on two threads the permutation took longer than on one (phase timers).
 /// Where `scratch` cannot hold every moved block's record (many particles changed cell, e.g.
 /// at a first sort), it permutes array by array through `scratch` instead.
 pub fn permute_carried<V: Vector>(

@@ -3,9 +3,8 @@
 //! prints the table). Without the feature every call here compiles to nothing.
 //!
 //! Why a feature and not a profiler: perf samples say where the CPU goes, not where a two-thread
-//! step waits. Sessions 15 to 17 found the phases that were slower on two threads than on one
-//! (the permutation, the sort of a developed flow) only with timers around each phase
-//! (docs/benchmarks.md).
+//! step waits. The phases that were slower on two threads than on one (the permutation, the
+//! sort of a developed flow) showed only with timers around each phase.
 
 /// The timed phases of a step, in the order of the report.
 #[derive(Clone, Copy, Debug)]

@@ -78,7 +78,7 @@ fn claim(segment: &AtomicU64, from_front: bool) -> Option<usize> {
 /// Why not rayon's split: rayon hands a loop's pieces to whichever thread asks first, so the
 /// slots one thread wrote in a loop are, in the next, as likely processed on the other core,
 /// which must fetch them from the first core's L2 cache. A 2D dam break's integrator sweep
-/// took twice as long per slot on two threads as on one (docs/benchmarks.md, Session 16).
+/// took twice as long per slot on two threads as on one (phase timers, see [`crate::phases`]).
 /// Here `0..n` is cut into one contiguous segment per thread in thread order, and each thread
 /// works through its own: even threads from the segment's front, odd ones from its back, so
 /// that two neighbouring segments are worked from their outer ends towards each other. A
@@ -146,7 +146,7 @@ fn workers<R: Send>(count: usize, work: &(impl Fn() -> R + Sync), merge: &(impl 
 /// waking it takes a futex call and, in a virtual machine, an interrupt to a halted virtual
 /// CPU. A simulation step is a handful of parallel loops with short serial parts between
 /// them, long enough for the second thread to fall asleep: it then started the next loop 15-60
-/// us late, a few per cent of a 2D step on two threads (docs/benchmarks.md, Session 16). OpenMP
+/// us late, a few per cent of a 2D step on two threads (phase timers). OpenMP
 /// runtimes spin before sleeping for the same reason (GOMP_SPINCOUNT, OMP_WAIT_POLICY).
 pub fn with_workers_polling<R: Send>(op: impl FnOnce() -> R + Send) -> R {
     let pollers = rayon::current_num_threads().saturating_sub(1);
