@@ -13,16 +13,17 @@ Public names:
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
 - :func:`front_position`: dam-break surge front from fluid positions.
+- :func:`load`: a flume run's records from its folder, as an ``xarray.Dataset``
+  (:mod:`watersim.rundir`: checkpoints, resume, re-analysis).
 - :func:`load_scene`: a scene file (TOML, :mod:`watersim.scenefile`) as builder + output options.
 - :mod:`wave_theory`, :mod:`analysis`: wave-maker theory and gauge analysis.
 """
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
-
 from . import analysis, wave_theory
 from ._core import InstabilityError, SceneError
+from ._version import __version__
 from .checkpoint import load_checkpoint, save_checkpoint
 from .flume import (
     DampingZone,
@@ -46,14 +47,11 @@ from .flume import (
     elevation_gauges_between,
 )
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
+from .rundir import load
 from .scenefile import load as load_scene
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
-try:
-    __version__: str = version("watersim")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
-    __version__ = "0.0.0+unknown"
 
 __all__ = [
     "DamBreak",
@@ -85,6 +83,7 @@ __all__ = [
     "elevation_gauges_between",
     "front_error",
     "front_position",
+    "load",
     "load_checkpoint",
     "load_martin_moyce",
     "load_scene",

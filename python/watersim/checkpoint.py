@@ -16,6 +16,7 @@ has to be taken before.
 from __future__ import annotations
 
 import json
+import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -23,9 +24,10 @@ from typing import Any
 import numpy as np
 
 from ._core import SceneError
+from ._version import __version__
 from .simulation import Simulation
 
-__all__ = ["LastGood", "load_checkpoint", "save_checkpoint", "write_state"]
+__all__ = ["LastGood", "load_checkpoint", "read_header", "save_checkpoint", "write_state"]
 
 _ARRAYS = (
     "positions", "velocities", "densities", "ids", "kinds", "velocities_prev", "densities_prev",
@@ -38,10 +40,17 @@ def save_checkpoint(sim: Simulation, path: str | Path) -> Path:
     return write_state(sim.core.checkpoint(), sim.scene, path)
 
 
-def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | Path) -> Path:
+def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | Path,
+                extras: Mapping[str, Any] | None = None) -> Path:
     """Writes a state taken with ``sim.core.checkpoint()`` of a simulation of ``scene`` to
-    ``path`` (``.npz``, readable by :func:`load_checkpoint`); returns the path written."""
+    ``path`` (``.npz``, readable by :func:`load_checkpoint`); returns the path written.
+
+    ``extras``: JSON-ready state of the Python side of the run (what its monitors found so
+    far), read back with :func:`read_extras`. The file also records the package version.
+    """
     data: dict[str, Any] = {key: state[key] for key in _ARRAYS}
+    data["version"] = np.asarray(__version__)
+    data["extras_json"] = np.asarray(json.dumps(dict(extras or {})))
     for key in _SCALARS:
         data[key] = np.asarray(state[key])
     data["energy0"] = np.asarray(state["energy0"], dtype=np.float64)
@@ -57,6 +66,33 @@ def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | 
     np.savez(tmp, **data)
     tmp.replace(path)
     return path
+
+
+def read_header(path: str | Path) -> dict[str, Any]:
+    """The scene, version, time, steps and extras of a checkpoint, without restoring it.
+
+    Raises:
+        SceneError: the file cannot be read as a WaterSim checkpoint (missing, truncated or
+            not one), with the reason.
+    """
+    try:
+        # our own handle: np.load leaves its file open when the archive is damaged
+        with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as f:
+            missing = [k for k in ("scene_json", "time", "steps", *_ARRAYS) if k not in f]
+            if missing:
+                raise SceneError(f"checkpoint {path}: not a WaterSim checkpoint "
+                                 f"(no {', '.join(missing)})")
+            return {
+                "scene": json.loads(str(f["scene_json"])),
+                "version": str(f["version"]) if "version" in f else None,
+                "time": float(f["time"]),
+                "steps": int(f["steps"]),
+                "extras": json.loads(str(f["extras_json"])) if "extras_json" in f else {},
+            }
+    except SceneError:
+        raise
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as exc:
+        raise SceneError(f"checkpoint {path}: unreadable ({type(exc).__name__}: {exc})") from exc
 
 
 def load_checkpoint(path: str | Path, sim: Simulation | None = None) -> Simulation:

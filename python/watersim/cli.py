@@ -45,7 +45,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
-from . import __version__, overrides
+from . import overrides, rundir
+from ._version import __version__
 from ._core import InstabilityError, SceneError
 from ._jsonio import json_ready as _jsonable
 from ._jsonio import write_json_atomic
@@ -83,6 +84,8 @@ CASES: dict[str, tuple[type[SceneBuilder], dict[str, Any]]] = {
 """Built-in cases: builder class and the fields the case fixes."""
 
 ALL_CASES: tuple[str, ...] = (*CASES, *FLUME_CASES)
+DEFAULT_CHECKPOINTS = "wall:600"
+"""A flume run writes a checkpoint every ten minutes of wall time unless told otherwise."""
 """Every case ``watersim run`` knows: the verification cases, then the wave-flume cases."""
 
 BENCH_CASES: tuple[str, ...] = ("dambreak2d", "dambreak3d", *DSPH_CASES)
@@ -143,8 +146,10 @@ def _run_recorded(
     progress: bool,
     outputs: RunOutputs,
     before_close: Callable[[], Any] | None = None,
+    **schedule_options: Any,
 ) -> tuple[str, dict[str, Any] | None]:
-    """Run ``sim`` to ``until`` [s] with ``schedule``; return ``(status, error record)``.
+    """Run ``sim`` to ``until`` [s] with ``schedule`` (and the ``schedule_options`` of
+    :meth:`Simulation.run_schedule`); return ``(status, error record)``.
 
     A monitor stop (status: its kind), Ctrl-C (``"interrupted"``) or a core error (``"error"``)
     ends the run with its record; whatever happens, ``before_close`` runs, the log gets its
@@ -153,7 +158,7 @@ def _run_recorded(
     status = "ok"
     error: dict[str, Any] | None = None
     try:
-        sim.run_schedule(until, schedule, progress=progress)
+        sim.run_schedule(until, schedule, progress=progress, **schedule_options)
     except InstabilityError as exc:
         status = stop_status(exc)
         error = error_record(exc)
@@ -274,6 +279,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     out, snapshot_every, progress = _run_options(args, scene)
     if isinstance(scene.builder, FlumeScene):
         return _run_flume(args, scene, notes, out, snapshot_every, progress)
+    if args.checkpoint_every is not None:
+        raise CliError("--checkpoint-every: only flume runs write checkpoints (a dam break or "
+                       "tank run keeps its last good state: --save-last-good)")
     builder = scene.builder
     name = scene.name
     if args.sample_every is None:
@@ -351,25 +359,39 @@ def _run_flume(
     out: Path,
     snapshot_every: float | None,
     progress: bool,
+    resumed: rundir.Reopened | None = None,
 ) -> int:
-    """``watersim run`` for a wave flume: summary.json, gauges.csv, analysis.json, log.jsonl."""
+    """``watersim run`` for a wave flume: summary.json, gauges.csv, analysis.json, log.jsonl,
+    scene.toml and checkpoints/; with ``resumed``, ``watersim resume``: the run continues from
+    its checkpoint into the same files."""
     builder = scene.builder
     assert isinstance(builder, FlumeScene)
     name = scene.name
     keeper = _last_good_keeper(args)
+    checkpoint_every = rundir.CheckpointEvery.parse(args.checkpoint_every or DEFAULT_CHECKPOINTS)
     say: Callable[[str], None] = (lambda _line: None) if args.quiet else print
     until = float(builder.until)  # type: ignore[arg-type]
     every = args.sample_every if args.sample_every is not None else max(until / 20.0, 1e-6)
-    sim = builder.build()  # the core's checks (memory, ...) come before the output folder
+    # the core's checks (memory, ...) come before the output folder
+    sim = builder.build() if resumed is None else resumed.sim
+    assert isinstance(sim, FlumeSimulation)
     out.mkdir(parents=True, exist_ok=True)
+    if resumed is None:
+        rundir.write_scene(out, scene)
+    checkpointer = rundir.Checkpointer(out, checkpoint_every, poll=every, scene=scene)
     threads = rayon_threads()
+    start = "" if resumed is None else f", resumed at t = {resumed.time:.6g} s"
     say(
         f"watersim {__version__}: {name}, {sim.n_particles} particles "
-        f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
+        f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s{start}, "
+        f"{threads} threads"
     )
-    outputs = RunOutputs(out, snapshot_every)
-    outputs.log.write("start", case=name, n_particles=sim.n_particles, dp=builder.dp,
-                      until=until, threads=threads, version=__version__, warnings=notes)
+    outputs = RunOutputs(out, snapshot_every, None if resumed is None else resumed.time)
+    outputs.log.write("start" if resumed is None else "resume", case=name,
+                      n_particles=sim.n_particles, dp=builder.dp, until=until, threads=threads,
+                      version=__version__, warnings=notes,
+                      **({} if resumed is None else {"checkpoint": str(resumed.checkpoint),
+                                                     "t": resumed.time, "steps": resumed.steps}))
     csv_path = out / "gauges.csv"
     t_start = time.perf_counter()
     next_report = [0.0]
@@ -388,9 +410,14 @@ def _run_flume(
         on_sample(s)
         keeper(s)
 
+    def finish() -> None:
+        sim.write_gauges_csv(csv_path)
+        if sim.time >= until:  # a finished run can be extended: resume --until
+            checkpointer.save(sim)
+
     status, error = _run_recorded(
         sim, until, [(every, sample_and_keep), *outputs.schedule()], progress,
-        outputs, lambda: sim.write_gauges_csv(csv_path),
+        outputs, finish, origin=0.0, initial=resumed is None, last=checkpointer.schedule(),
     )
     wall = time.perf_counter() - t_start
 
@@ -412,6 +439,11 @@ def _run_flume(
         **outputs.summary(),
         "gauges_csv": "gauges.csv",
         "analysis_json": "analysis.json",
+        "scene_toml": rundir.SCENE_FILE,
+        "checkpoints": [str(p.relative_to(out)) for p in rundir.checkpoints(out)],
+        **({} if resumed is None else {"resumed_from": {
+            "checkpoint": str(resumed.checkpoint.relative_to(out)), "time": resumed.time,
+            "steps": resumed.steps}}),
         "n_gauge_samples": int(sim.gauges.t.size),
         "warnings": notes,
         "builder": builder.as_dict(),
@@ -428,6 +460,37 @@ def _run_flume(
     if error is not None:
         print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
         return 130 if status == "interrupted" else 1
+    return 0
+
+
+def cmd_resume(args: argparse.Namespace) -> int:
+    """``watersim resume DIR``: continue a flume run from its last checkpoint, to its end time
+    or to ``--until``, into the same folder."""
+    _positive_option("--until", args.until)
+    resumed = rundir.reopen(args.directory, args.until)
+    args.out = args.directory
+    out, snapshot_every, progress = _run_options(args, resumed.scene)
+    return _run_flume(args, resumed.scene, [], out, snapshot_every, progress, resumed)
+
+
+def cmd_analyse(args: argparse.Namespace) -> int:
+    """``watersim analyse DIR``: recompute analysis.json of a flume run from its records."""
+    folder = Path(args.directory)
+    reopened = rundir.reopen(folder)
+    sim = reopened.sim
+    analysis = sim.analyse(t_start=args.t_start)
+    name = reopened.scene.name
+    # reference comparisons belong to the built-in cases, not to a file of the same name
+    extras_case = "" if reopened.scene.path is not None else name
+    analysis.update(case_extras(extras_case, reopened.scene.builder, analysis))
+    analysis["case"] = name
+    analysis["status"] = "reanalysed"
+    analysis["records_to"] = {"t": reopened.time, "steps": reopened.steps}
+    target = Path(args.out) if args.out else folder / "analysis.json"
+    _write_json(target, analysis)
+    for line in headline(name, analysis):
+        print(line)
+    print(f"wrote {target}")
     return 0
 
 
@@ -887,7 +950,40 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="K",
         help="take the in-memory last good state every K samples (default 1)",
     )
+    checkpoint_help = ("flume runs: write a checkpoint (DIR/checkpoints/, the last two kept) every "
+                       "S simulated seconds (S or sim:S) or every S seconds of wall time (wall:S, "
+                       "wall:10min, wall:2h); default wall:600. A finished run always writes one.")
+    run.add_argument("--checkpoint-every", metavar="SPEC", default=None, help=checkpoint_help)
     run.set_defaults(func=cmd_run)
+
+    resume = sub.add_parser(
+        "resume", help="continue a killed, stopped or finished flume run from its last checkpoint"
+    )
+    resume.add_argument("directory", metavar="DIR", help="the run's output folder")
+    resume.add_argument("--until", type=float, default=None, metavar="T",
+                        help="new end time [s] (default: the run's own)")
+    resume.add_argument("--checkpoint-every", metavar="SPEC", default=None, help=checkpoint_help)
+    resume.add_argument("--sample-every", type=float, default=None, metavar="S",
+                        help="how often gauges.csv is rewritten (default until/20)")
+    resume.add_argument("--snapshot-every", type=float, default=None, metavar="S",
+                        help="particle snapshots every S simulated seconds (default: the run's)")
+    resume.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                        help="show a progress bar on stderr (default: when stderr is a terminal)")
+    resume.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    resume.add_argument("--save-last-good", metavar="FILE", help=argparse.SUPPRESS)
+    resume.add_argument("--last-good-every", type=int, default=1, metavar="K",
+                        help="take the in-memory last good state every K samples (default 1)")
+    resume.set_defaults(func=cmd_resume)
+
+    analyse = sub.add_parser(
+        "analyse", help="recompute analysis.json of a flume run from its stored records"
+    )
+    analyse.add_argument("directory", metavar="DIR", help="the run's output folder")
+    analyse.add_argument("--t-start", type=float, default=None, metavar="T",
+                         help="start every gauge's analysis window at T [s] (default: the wave's "
+                         "arrival plus the ramp plus one period, per gauge)")
+    analyse.add_argument("--out", metavar="FILE", help="where to write (default DIR/analysis.json)")
+    analyse.set_defaults(func=cmd_analyse)
 
     show = sub.add_parser(
         "show-scene", help="print a case's full scene as a scene file (TOML), or --reference"

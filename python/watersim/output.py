@@ -72,6 +72,19 @@ class SnapshotWriter:
         self.prefix = prefix
         self.entries: list[tuple[float, str]] = []
 
+    def continue_from(self, time: float) -> None:
+        """Take over the snapshots an earlier run wrote here up to ``time`` [s] (a resumed run):
+        later ones, from after its checkpoint, are dropped from the collection and their files
+        overwritten as the run writes them again."""
+        if not self.pvd_path.is_file():
+            return
+        root = ET.parse(self.pvd_path).getroot()
+        self.entries = [
+            (float(d.attrib["timestep"]), d.attrib["file"])
+            for d in root.iter("DataSet") if float(d.attrib["timestep"]) <= time
+        ]
+        self._write_pvd()
+
     @property
     def pvd_path(self) -> Path:
         return self.directory / f"{self.prefix}.pvd"
@@ -110,12 +123,13 @@ class RunLog:
     [s], ...).
 
     Args:
-        path: the file (overwritten).
+        path: the file (overwritten, or appended to with ``append``).
+        append: add to an existing log (a resumed run).
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, append: bool = False) -> None:
         self.path = Path(path)
-        self._file: TextIO | None = open(self.path, "w", encoding="utf-8")
+        self._file: TextIO | None = open(self.path, "a" if append else "w", encoding="utf-8")
         self._start = time.perf_counter()
 
     def write(self, event: str, **fields: Any) -> None:
@@ -144,15 +158,20 @@ class RunOutputs:
     Args:
         directory: the run's output folder (exists).
         snapshot_every: interval between snapshots [s] of simulated time, or None for none.
+        resume_time: a resumed run's start [s]: the log is appended to and the snapshots up to
+            that time are kept.
     """
 
-    def __init__(self, directory: str | Path, snapshot_every: float | None) -> None:
+    def __init__(self, directory: str | Path, snapshot_every: float | None,
+                 resume_time: float | None = None) -> None:
         self.directory = Path(directory)
         self.snapshot_every = snapshot_every
-        self.log = RunLog(self.directory / "log.jsonl")
+        self.log = RunLog(self.directory / "log.jsonl", append=resume_time is not None)
         self.snapshots = (
             SnapshotWriter(self.directory / "snapshots") if snapshot_every is not None else None
         )
+        if self.snapshots is not None and resume_time is not None:
+            self.snapshots.continue_from(resume_time)
 
     def schedule(self) -> list[tuple[float, Callable[[Simulation], Any]]]:
         """The ``(interval, callback)`` pairs to add to :meth:`Simulation.run_schedule`."""

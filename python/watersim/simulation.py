@@ -258,19 +258,32 @@ class Simulation:
         until: float,
         schedule: Sequence[tuple[float, Callable[[Simulation], Any]]],
         progress: bool = False,
+        *,
+        origin: float | None = None,
+        initial: bool = True,
+        last: Sequence[tuple[float, Callable[[Simulation], Any]]] = (),
     ) -> None:
         """Advance until ``time >= until`` [s], calling several callbacks at their own intervals.
 
         Each ``(every, callback)`` of ``schedule`` is called as :meth:`run` calls its callback:
         once at the current time, at the first step reaching each ``t0 + k * every`` (once per
         stop, even if a step passes several of its sample times) and at ``until``. Callbacks due
-        at the same stop are called in ``schedule`` order. A sample closer than ``1e-9 * every``
-        to ``until`` is merged with the final one.
+        at the same stop are called in ``schedule`` order, then the simulation's own monitors,
+        then ``last``. A sample closer than ``1e-9 * every`` to ``until`` is merged with the
+        final one. Where the run stops between steps never changes a step.
 
         Args:
             until: end time [s].
             schedule: ``(interval [s], callback)`` pairs.
             progress: show a progress bar (see :meth:`run`).
+            origin: ``t0`` of the sample times (default: the current time). A resumed run passes
+                its first run's start, so that it stops where the first run would have: the
+                first sample time of each callback is then the first ``origin + k * every``
+                after the current time.
+            initial: call every callback once at the current time (a resumed run does not: its
+                checkpoint was taken after they ran at that time).
+            last: callbacks called after every other one due at a stop (a checkpoint, which
+                must hold what the others did).
 
         Raises:
             ValueError: ``until`` not finite, or an interval not a positive number.
@@ -278,16 +291,22 @@ class Simulation:
         """
         if not math.isfinite(until):
             raise ValueError(f"until: must be finite, got {until!r}")
-        schedule = (*schedule, *self._monitors())
+        schedule = (*schedule, *self._monitors(), *last)
         for every, _ in schedule:
             if not (every > 0.0 and math.isfinite(every)):
                 raise ValueError(f"callback_every: must be a positive number, got {every!r}")
         bar = _Progress(self, until) if progress else None
         try:
-            t0 = self._sim.time
-            for _, callback in schedule:
-                callback(self)
-            ks = [1] * len(schedule)
+            t0 = self._sim.time if origin is None else float(origin)
+            if initial:
+                for _, callback in schedule:
+                    callback(self)
+            ks = [max(1, math.floor((self._sim.time - t0) / every) + 1) for every, _ in schedule]
+            for i, (every, _) in enumerate(schedule):  # the first k with t0 + k every > time
+                while ks[i] > 1 and t0 + (ks[i] - 1) * every > self._sim.time:
+                    ks[i] -= 1
+                while t0 + ks[i] * every <= self._sim.time:
+                    ks[i] += 1
 
             def due(i: int) -> float | None:
                 every = schedule[i][0]

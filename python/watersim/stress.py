@@ -940,7 +940,7 @@ def machine_info() -> dict[str, Any]:
 def cmd_stress(args: Any) -> int:
     """``watersim stress``: run the matrix, write the JSON and the report; exit 0 unless a run
     ended in ``error`` (unstable runs are results, not errors)."""
-    from . import __version__
+    from ._version import __version__
 
     specs = quick_matrix() if args.quick else full_matrix()
     if args.group:
