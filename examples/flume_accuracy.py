@@ -18,7 +18,7 @@ and writes into ``--out``:
 
 Run::
 
-    PYTHONPATH=python python3 examples/flume_accuracy.py docs/wave-flume/runs-flume2d-res5.json \
+    python3 examples/flume_accuracy.py docs/wave-flume/runs-flume2d-res5.json \
         --out docs/wave-flume
 
 Units: metres, seconds; errors are fractions of the target (0.05 = 5 %).

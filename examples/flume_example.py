@@ -26,6 +26,8 @@ import numpy.typing as npt
 
 import watersim as ws
 from watersim import analysis as an
+from watersim.cost import SpeedMeter
+from watersim.cost import estimate as estimate_cost
 from watersim.flume import lattice_dp, lattice_layers
 
 FloatArray = npt.NDArray[np.float64]
@@ -52,7 +54,7 @@ def parse_args(
         dp = lattice_dp(depth, dp)
     p = argparse.ArgumentParser(description=description)
     p.add_argument("--dp", type=float, default=dp,
-                   help=f"particle spacing [m] (default {dp:.6g}: coarse, a few minutes"
+                   help=f"particle spacing [m] (default {dp:.6g}: coarse; the run prints its cost first"
                         + ("" if depth is None else f"; must divide the depth {depth:g} m")
                         + ")")
     p.add_argument("--periods", type=float, default=periods,
@@ -171,8 +173,17 @@ def run_flume(
         sim = flume.simulation(**kwargs)
         scene = sim.setup
         print(f"{sim!r}", file=sys.stderr)
+        threads = int(os.environ.get("RAYON_NUM_THREADS") or os.cpu_count() or 1)
+        print(estimate_cost(sim, float(scene.until), threads).line(), file=sys.stderr)
+        meter = SpeedMeter(sim, float(scene.until), lambda line: print(line, file=sys.stderr))
+
+        def keep(s: ws.Simulation) -> None:
+            s.write_gauges_csv(out / "gauges.csv")  # a stopped run keeps its records so far
+            meter(s)
+
         start = time.perf_counter()
-        sim.run(scene.until, progress=True)
+        sim.run(scene.until, progress=True, callback_every=float(scene.until) / 50.0,
+                callback=keep)
         wall = time.perf_counter() - start
         sim.write_gauges_csv(out / "gauges.csv")
         analysis = sim.analyse()

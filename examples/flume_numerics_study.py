@@ -9,7 +9,7 @@ height over the target at each gauge. About 1-3 minutes per variant on one core.
 
 Run::
 
-    RAYON_NUM_THREADS=1 PYTHONPATH=python python3 examples/flume_numerics_study.py \
+    RAYON_NUM_THREADS=1 python3 examples/flume_numerics_study.py \
         --json docs/wave-flume/numerics-study.json            # every variant
     ... examples/flume_numerics_study.py base alpha0 --json out.json   # some of them
 

@@ -26,7 +26,7 @@ told apart from what these known causes predict.
 
 Run (about 10 minutes on one core at the default dp):
 
-    RAYON_NUM_THREADS=1 PYTHONPATH=python python3 examples/irregular_spectrum.py
+    RAYON_NUM_THREADS=1 python3 examples/irregular_spectrum.py
 
 writes ``docs/irregular/{results.json,spectrum.png,records.npz,run.json}``; ``--replot`` redoes
 the analysis and the figure from ``records.npz`` and ``run.json`` without running; ``--budget``

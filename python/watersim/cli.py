@@ -53,6 +53,8 @@ from ._jsonio import write_json_atomic
 from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .checkpoint import LastGood
+from .cost import SpeedMeter
+from .cost import estimate as estimate_cost
 from .errors import CliError
 from .flume import FlumeScene, FlumeSimulation
 from .flume_cases import (
@@ -297,6 +299,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         f"watersim {__version__}: {name}, {sim.n_particles} particles "
         f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s, {threads} threads"
     )
+    say(estimate_cost(sim, until, threads).line())
+    meter = SpeedMeter(sim, until, say)
     outputs = RunOutputs(out, snapshot_every)
     outputs.log.write("start", case=name, n_particles=sim.n_particles, dp=builder.dp,
                       until=until, threads=threads, version=__version__)
@@ -309,6 +313,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     def sample(s: Simulation) -> None:
         recorder(s)
         keeper(s)
+        meter(s)
 
     status, error = _run_recorded(
         sim, until, [(args.sample_every, sample), *outputs.schedule()], progress, outputs,
@@ -386,6 +391,9 @@ def _run_flume(
         f"({sim.n_fluid} fluid), dp = {builder.dp:g} m, until {until:g} s{start}, "
         f"{threads} threads"
     )
+    cost = estimate_cost(sim, until, threads)
+    say(cost.line())
+    meter = SpeedMeter(sim, until, say)
     outputs = RunOutputs(out, snapshot_every, None if resumed is None else resumed.time)
     outputs.log.write("start" if resumed is None else "resume", case=name,
                       n_particles=sim.n_particles, dp=builder.dp, until=until, threads=threads,
@@ -409,6 +417,7 @@ def _run_flume(
     def sample_and_keep(s: Simulation) -> None:
         on_sample(s)
         keeper(s)
+        meter(s)
 
     def finish() -> None:
         sim.write_gauges_csv(csv_path)
