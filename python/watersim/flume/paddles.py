@@ -30,6 +30,14 @@ class PaddleLaw:
     stroke: float | None = None
     second_order_amplitude: float | None = None
     duration: float | None = None
+    absorption_target: dict[str, Any] | None = None
+    """The core's law of the target surface elevation at the paddle (the wave the law makes,
+    by linear theory), None where the wave has no target (a tabulated motion)."""
+    absorption_gain: float | None = None
+    """The paddle's displacement rate per metre of elevation at the wave's (peak) frequency,
+    ``omega / (H/S)`` [1/s] (Schaffer & Klopman 2000)."""
+    absorption_drift_time: float | None = None
+    """Time constant of the absorption's drift correction [s]: ten (peak) periods."""
 
 
 class _Paddle:
@@ -57,24 +65,28 @@ class _Paddle:
         return backward
 
     def harmonic_law(
-        self, components: list[list[float]], bound: float, period: float, **extra: Any
+        self, components: list[list[float]], bound: float, period: float,
+        absorption_target: list[list[float]] | None = None, **extra: Any
     ) -> PaddleLaw:
         """The core's ``harmonic`` law, ``X = r(t) sum a sin(omega t + phase)`` over
         ``components`` ``[a, omega, phase]`` with the start-up ramp over ``ramp_periods``
-        ``period`` [s]; ``bound`` [m] is the largest excursion either way, ``extra`` the other
-        :class:`PaddleLaw` fields."""
+        ``period`` [s]; ``bound`` [m] is the largest excursion either way; the target
+        elevation at the paddle is ``absorption_target``'s components with the same ramp;
+        ``extra`` the other :class:`PaddleLaw` fields."""
         ramp = self.ramp_periods * period
+
+        def harmonic(parts: list[list[float]]) -> dict[str, Any]:
+            return {"type": "harmonic", "components": parts, "ramp_duration": ramp,
+                    "ramp_shape": self.ramp}
+
         return PaddleLaw(
-            law={
-                "type": "harmonic",
-                "components": components,
-                "ramp_duration": ramp,
-                "ramp_shape": self.ramp,
-            },
+            law=harmonic(components),
             backward=bound,
             forward=bound,
             ramp_duration=ramp,
             period=period,
+            absorption_target=None if absorption_target is None else harmonic(absorption_target),
+            absorption_drift_time=10.0 * period,
             **extra,
         )
 

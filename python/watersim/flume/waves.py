@@ -111,12 +111,19 @@ class RegularWave(_Wave):
         if transfer is not None:
             stroke = self.height / float(transfer)
         components = [[0.5 * stroke, law.omega, law.phase]]
+        # the target at the paddle: X = (S/2) sin(theta) makes eta = (H/2) cos(theta) there (the
+        # elevation is in phase with the paddle's velocity), plus Stokes' bound second harmonic
+        # (H/2 cos + a2 cos 2theta, crest at theta = 0) where the paddle generates it
+        target = [[0.5 * self.height, law.omega, law.phase + 0.5 * math.pi]]
         if law.second_order_amplitude != 0.0:
             components.append([law.second_order_amplitude, 2.0 * law.omega, 2.0 * law.phase])
+            bound = float(wt.stokes2_second_harmonic_amplitude(self.height, law.wavenumber, depth))
+            target.append([bound, 2.0 * law.omega, 2.0 * law.phase + 0.5 * math.pi])
         return paddle.harmonic_law(
             components, sum(abs(c[0]) for c in components), self.period,
             design_height=self.height, stroke=stroke,
             second_order_amplitude=law.second_order_amplitude,
+            absorption_target=target, absorption_gain=law.omega * stroke / self.height,
         )
 
     def default_sample_interval(self, depth: float, g: float) -> float:
@@ -223,7 +230,15 @@ class IrregularWave(_Wave):
         # of any harmonic law), far above the signal's actual extremes for hundreds of
         # components; the tank must satisfy that bound.
         bound = float(np.sum(np.abs(amplitudes)))
-        return paddle.harmonic_law(components, bound, self.tp, design_height=1.8 * self.hs)
+        # each component's elevation at the paddle is in phase with its velocity
+        target = [
+            [float(a), float(w), float(p) + 0.5 * math.pi]
+            for a, w, p in zip(motion.wave_amplitudes, omegas, motion.phases, strict=True)
+        ]
+        peak = int(np.argmin(np.abs(np.asarray(motion.frequencies) - 1.0 / self.tp)))
+        gain = float(omegas[peak] * amplitudes[peak] / motion.wave_amplitudes[peak])
+        return paddle.harmonic_law(components, bound, self.tp, design_height=1.8 * self.hs,
+                                   absorption_target=target, absorption_gain=gain)
 
     def default_sample_interval(self, depth: float, g: float) -> float:
         return min(self.tp / 40.0, 0.05)
@@ -286,6 +301,11 @@ class SolitaryWave(_Wave):
         except ValueError as exc:
             raise SceneError(f"wave: {exc}") from None
         x_arr = np.asarray(x, dtype=np.float64)
+        # Goring's paddle moves with the depth-averaged velocity of the wave over it,
+        # dX/dt = c eta / (d + eta): the elevation at the paddle is eta = d U / (c - U)
+        c = float(wt.solitary_celerity(self.height, depth, g))
+        u = np.gradient(x_arr, t)
+        eta = depth * u / (c - u)
         return PaddleLaw(
             law={"type": "table", "t": (t + self.delay).tolist(), "x": x_arr.tolist()},
             backward=0.0,
@@ -295,6 +315,11 @@ class SolitaryWave(_Wave):
             design_height=self.height,
             stroke=float(x_arr[-1]),
             duration=duration,
+            absorption_target={"type": "table", "t": (t + self.delay).tolist(),
+                               "x": eta.tolist()},
+            # linear long waves: U = sqrt(g/d) eta
+            absorption_gain=math.sqrt(g / depth),
+            absorption_drift_time=10.0 * duration,
         )
 
     def default_sample_interval(self, depth: float, g: float) -> float:

@@ -1,0 +1,75 @@
+"""Active wave absorption at the paddle: the target elevation and gain each wave gives the core
+(Schaffer & Klopman 2000), and the absorption in runs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import watersim as ws
+from watersim import wave_theory as wt
+
+G = 9.81
+
+
+def _scene(wave: ws.RegularWave | ws.SolitaryWave | ws.IrregularWave, paddle: object,
+           depth: float = 0.3) -> ws.FlumeScene:
+    flume = ws.Flume(length=4.0, depth=depth, damping=False)
+    return flume.scene(wave, paddle=paddle, dp=0.03)
+
+
+@pytest.mark.parametrize("paddle", [ws.Piston(), ws.Flap()])
+def test_regular_target_is_the_linear_wave_at_the_paddle(paddle: object) -> None:
+    wave = ws.RegularWave(height=0.03, period=1.26, phase=0.4)
+    law = _scene(wave, paddle).law
+    target = law.absorption_target
+    assert target is not None and target["type"] == "harmonic"
+    (a, w, phi), = target["components"]
+    assert a == pytest.approx(0.015) and w == pytest.approx(2 * math.pi / 1.26)
+    # in phase with the paddle's velocity: X ~ sin(theta), eta ~ cos(theta)
+    assert phi == pytest.approx(0.4 + math.pi / 2)
+    assert target["ramp_duration"] == law.ramp_duration
+    k = float(wt.wavenumber(1.26, 0.3))
+    transfer = (wt.piston_height_to_stroke if isinstance(paddle, ws.Piston)
+                else wt.flap_height_to_stroke)(k, 0.3)
+    assert law.absorption_gain == pytest.approx(w / float(transfer))
+
+
+def test_second_order_piston_targets_the_bound_harmonic() -> None:
+    wave = ws.RegularWave(height=0.03, period=1.26)
+    law = _scene(wave, ws.Piston(order=2)).law
+    assert law.absorption_target is not None
+    second = law.absorption_target["components"][1]
+    k = float(wt.wavenumber(1.26, 0.3))
+    assert second[0] == pytest.approx(float(wt.stokes2_second_harmonic_amplitude(0.03, k, 0.3)))
+    assert second[1] == pytest.approx(2 * 2 * math.pi / 1.26)
+
+
+def test_shallow_water_gain_tends_to_sqrt_g_over_d() -> None:
+    law = _scene(ws.RegularWave(height=0.002, period=8.0), ws.Piston()).law
+    assert law.absorption_gain == pytest.approx(math.sqrt(G / 0.3), rel=0.02)
+
+
+def test_solitary_target_peaks_at_the_wave_height() -> None:
+    law = _scene(ws.SolitaryWave(height=0.06), ws.Piston()).law
+    target = law.absorption_target
+    assert target is not None and target["type"] == "table"
+    assert max(target["x"]) == pytest.approx(0.06, rel=0.02)
+    assert law.absorption_gain == pytest.approx(math.sqrt(G / 0.3))
+
+
+def test_irregular_target_has_every_component() -> None:
+    law = _scene(ws.IrregularWave(hs=0.03, tp=1.3), ws.Piston()).law
+    assert law.absorption_target is not None
+    target = np.asarray(law.absorption_target["components"])
+    paddle = np.asarray(law.law["components"])
+    assert target.shape == paddle.shape
+    assert np.allclose(target[:, 1], paddle[:, 1])
+    assert np.allclose(target[:, 2], paddle[:, 2] + math.pi / 2)
+
+
+def test_a_tabulated_motion_has_no_target() -> None:
+    law = _scene(ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.01)), ws.Piston()).law
+    assert law.absorption_target is None and law.absorption_gain is None
