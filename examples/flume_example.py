@@ -328,7 +328,8 @@ def plot_envelopes(
         ax1.plot(x, col("mid_level"), "o-", ms=3, color="tab:orange",
                  label="(highest + lowest) / 2")
         ax1.plot(x, col("mean"), ":", color="tab:orange", label="time-mean level (set-up)")
-        lo = min(lo, float(np.nanmin(col("minimum"))) - 0.03)
+        if np.any(np.isfinite(col("minimum"))):  # None where a gauge's window is too short
+            lo = min(lo, float(np.nanmin(col("minimum"))) - 0.03)
     else:
         note(ax1, "no envelopes in analysis.json (record too short)")
     ax1.axhline(0.0, color="k", lw=0.6, ls="--")

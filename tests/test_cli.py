@@ -102,9 +102,9 @@ def test_run_writes_summary_and_front(tmp_path: Path) -> None:
     assert "martin_moyce" in summary  # no measured point before 0.05 s: a note says so
     with open(out / "front.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    assert {"t", "x_front"} <= set(rows[0])
-    assert float(rows[0]["t"]) == 0.0 and float(rows[0]["x_front"]) == pytest.approx(1.0)
-    assert len(rows) == 6 and float(rows[-1]["t"]) >= 0.05
+    assert {"t_s", "x_front_m", "h_column_m"} <= set(rows[0])
+    assert float(rows[0]["t_s"]) == 0.0 and float(rows[0]["x_front_m"]) == pytest.approx(1.0)
+    assert len(rows) == 6 and float(rows[-1]["t_s"]) >= 0.05
 
 
 def test_still_tank_run_reports_still_water(tmp_path: Path) -> None:
@@ -201,5 +201,5 @@ def test_unstable_run_keeps_its_output_and_exits_1(tmp_path: Path) -> None:
     assert 0 < error["time"] < 0.7
     with open(tmp_path / "front.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    assert len(rows) > 5 and float(rows[0]["x_front"]) == pytest.approx(1.0)
-    assert float(rows[-1]["t"]) <= error["time"]
+    assert len(rows) > 5 and float(rows[0]["x_front_m"]) == pytest.approx(1.0)
+    assert float(rows[-1]["t_s"]) <= error["time"]

@@ -188,13 +188,13 @@ def test_failed_dambreak_keeps_front_csv_and_last_good(tmp_path: Path) -> None:
     assert summary["status"] == error["kind"] != "ok"
     with open(out / "front.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    assert len(rows) >= 5 and all(math.isfinite(float(r["x_front"])) for r in rows)
+    assert len(rows) >= 5 and all(math.isfinite(float(r["x_front_m"])) for r in rows)
     last = summary["last_good"]
     assert last["path"] == str(out / "last_good.npz")
     # the last good state is one of the samples front.csv was written from: the last one, or
     # an earlier one when the energy (checked by the core every 50 steps only) had already
     # grown past the limit at the last sample
-    assert last["time"] in [float(r["t"]) for r in rows] and last["time"] < error["time"]
+    assert last["time"] in [float(r["t_s"]) for r in rows] and last["time"] < error["time"]
     resumed = load_checkpoint(out / "last_good.npz")
     assert resumed.time == last["time"] and resumed.steps == last["steps"]
     assert np.isfinite(resumed.densities).all()

@@ -424,7 +424,7 @@ def test_gauges_are_zeroed_on_their_still_water_reading_and_written_as_csv(
     path = gauges.to_csv(tmp_path / "gauges.csv")
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
-    assert rows[0] == ["t", "eta_x1.000", "eta_x2.000"]
+    assert rows[0] == ["t_s", "eta_x1p000_m", "eta_x2p000_m"]
     assert len(rows) == t.size + 1 and float(rows[1][0]) == 0.0
     assert rows[-1][2] == "nan"
 

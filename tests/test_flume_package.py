@@ -113,8 +113,8 @@ def test_a_new_gauge_kind_needs_only_its_class(
     ]
     gauges = flume.FlumeGauges(scene, records)
     np.testing.assert_array_equal(gauges.records["p0"]["value"], [1.0, 3.0])
-    assert gauges.columns() == ["t", "eta", "p0"]
+    assert gauges.columns() == ["t_s", "eta_m", "p0"]
     with open(gauges.to_csv(tmp_path / "gauges.csv"), encoding="utf-8") as f:
         rows = list(csv.reader(f))
-    assert rows[0] == ["t", "eta", "p0"]
+    assert rows[0] == ["t_s", "eta_m", "p0"]
     assert [float(r[2]) for r in rows[1:]] == [1.0, 2.0, 3.0]

@@ -176,7 +176,7 @@ def test_run_flume2d_writes_summary_gauges_and_analysis(tmp_path: Path) -> None:
     assert analysis["notes"]  # too short for wave statistics: it says so
     with open(out / "gauges.csv", newline="") as f:
         rows = list(csv.reader(f))
-    assert rows[0][:4] == ["t", "eta_x1.770", "eta_x3.541", "eta_x5.311"]
+    assert rows[0][:4] == ["t_s", "eta_x1p770_m", "eta_x3p541_m", "eta_x5p311_m"]
     assert len(rows[0]) == 7 and float(rows[1][0]) == 0.0
     assert float(rows[-1][0]) == pytest.approx(summary["sim_time"], abs=0.031)
 
@@ -211,7 +211,7 @@ def test_unstable_flume_run_keeps_gauges_and_exits_1(tmp_path: Path) -> None:
     assert summary["status"] not in ("ok", "error") and summary["error"]["time"] < 1.0
     with open(tmp_path / "gauges.csv", newline="") as f:
         rows = list(csv.reader(f))
-    assert rows[0][0] == "t" and len(rows) >= 2 and float(rows[1][0]) == 0.0
+    assert rows[0][0] == "t_s" and len(rows) >= 2 and float(rows[1][0]) == 0.0
     analysis = json.loads((tmp_path / "analysis.json").read_text())
     assert analysis["status"] == summary["status"]
 

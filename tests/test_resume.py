@@ -79,6 +79,9 @@ def test_resume_of_a_finished_run_extends_it_bit_for_bit(scene_file: Path, strai
     assert summary["state_sha256"] == _summary(straight)["state_sha256"]
     assert summary["resumed_from"]["time"] >= UNTIL / 2
     assert (out / "gauges.csv").read_bytes() == (straight / "gauges.csv").read_bytes()
+    velocity = sorted(p.name for p in straight.glob("velocity_*.csv"))
+    assert len(velocity) == 1
+    assert (out / velocity[0]).read_bytes() == (straight / velocity[0]).read_bytes()
     events = [json.loads(line)["event"] for line in (out / "log.jsonl").read_text().splitlines()]
     assert events[0] == "start" and "resume" in events and events[-1] == "end"
 
@@ -131,7 +134,7 @@ def test_load_gives_labelled_records(straight: Path) -> None:
     velocity = [name for name in data.data_vars if name.startswith("velocity_")]
     assert len(velocity) == 1 and data[velocity[0]].attrs["units"] == "m/s"
     csv = np.genfromtxt(straight / "gauges.csv", delimiter=",", names=True)
-    assert np.array_equal(csv["t"], data["time"].values)
+    assert np.array_equal(csv["t_s"], data["time"].values)
 
 
 def _snapshot(folder: Path) -> dict[str, bytes]:

@@ -99,7 +99,7 @@ def test_scene_file_run_writes_snapshots_gauges_log_and_plots(tmp_path: Path) ->
 
     # gauges.csv, the JSON log
     header = (out / "gauges.csv").read_text().splitlines()[0].split(",")
-    assert header == ["t", "eta_x0.500", "eta_x1.200", "runup"]
+    assert header == ["t_s", "eta_x0p500_m", "eta_x1p200_m", "runup_m"]
     events = [json.loads(line) for line in (out / "log.jsonl").read_text().splitlines()]
     assert events[0]["event"] == "start" and events[-1]["event"] == "end"
     assert events[-1]["status"] == "ok"
@@ -139,7 +139,7 @@ def test_nothing_but_summary_and_log_unless_asked(
     assert "snapshots" not in json.loads((out / "summary.json").read_text())
     # stderr is not a terminal here: no bar by default, one with --progress
     assert "particle-steps/s" not in capfd.readouterr().err
-    assert cli.main([*tank, "--progress", "--quiet"]) == 0
+    assert cli.main([*tank, "--progress", "--quiet", "--overwrite"]) == 0
     captured = capfd.readouterr()
     assert "particle-steps/s" in captured.err and captured.out == ""
 

@@ -20,8 +20,8 @@ def _blocks(language: str) -> list[str]:
 
 def _shortened(code: str, run: Path) -> str:
     # a fraction of a second instead of the guide's 6 s, and files under tmp_path
-    assert "until=6.0" in code and "runs/beach" in code
-    return code.replace("until=6.0", "until=0.3").replace("runs/beach", str(run))
+    assert "until=11.0" in code and "runs/beach" in code
+    return code.replace("until=11.0", "until=0.3").replace("runs/beach", str(run))
 
 
 def test_python_example_runs_and_matches_the_scene_file(
@@ -43,7 +43,7 @@ def test_python_example_runs_and_matches_the_scene_file(
         "particles_00000.vtu", "particles_00001.vtu"]
 
     # the scene file of section 2 is the same case
-    from_file = sf.loads(toml[0].replace("until = 6.0", "until = 0.3"), source="beach.toml")
+    from_file = sf.loads(toml[0].replace("until = 11.0", "until = 0.3"), source="beach.toml")
     assert from_file.output.snapshot_every == 0.5
     assert json.dumps(from_file.builder.to_scene(), sort_keys=True) == json.dumps(
         sim.scene, sort_keys=True)  # type: ignore[attr-defined]

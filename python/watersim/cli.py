@@ -2,8 +2,8 @@
 
 ::
 
-    watersim run CASE|FILE.toml [--set key=value ...] [--out DIR] [--sample-every S]
-                 [--snapshot-every S] [--progress|--no-progress] [--quiet]
+    watersim run CASE|FILE.toml [--set key=value ...] [--out DIR] [--overwrite]
+                 [--sample-every S] [--snapshot-every S] [--progress|--no-progress] [--quiet]
     watersim show-scene CASE|FILE.toml [--set ...]     (or --reference)
     watersim plot DIR
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
@@ -21,8 +21,14 @@ writes what it has and exits with code 1.
 The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``solitary2d`` and
 ``flume3d`` (:mod:`watersim.flume_cases`) take the numerical parameters and dotted keys of their
 objects (``--set wave.height=0.06 --set paddle.order=1 --set beach.slope=0.05``) and write
-``summary.json``, ``gauges.csv`` (rewritten as the run goes, so an unstable run keeps its
-records) and ``analysis.json``.
+``summary.json``, ``gauges.csv`` and one ``velocity_NAME.csv`` per velocity probe or window
+(rewritten as the run goes, so an unstable run keeps its records; headers with units,
+:func:`watersim.flume.gauges.csv_column`) and ``analysis.json``, whose notes (what a too short
+record left out, and the ``until`` it needs) are printed after the run.
+
+A run writes into ``runs/NAME`` (a scene file NAME.toml) or ``runs/CASE-builtin`` (a built-in
+case), or ``--out DIR``; a folder holding an earlier run's outputs is refused unless
+``--overwrite`` (:func:`watersim.rundir.claim_folder`).
 
 A scene file (``watersim run FILE.toml``, :mod:`watersim.scenefile`) describes any scene the
 builders can make; ``watersim show-scene CASE`` prints a built-in case as one. Every run writes
@@ -55,8 +61,9 @@ from .bench_scaling import ScalingRun, fit_scaling
 from .checkpoint import LastGood
 from .cost import SpeedMeter
 from .cost import estimate as estimate_cost
-from .errors import CliError
+from .errors import CliError, did_you_mean
 from .flume import FlumeScene, FlumeSimulation
+from .flume.records import velocity_csv_name
 from .flume_cases import (
     FLUME_CASES,
     case_extras,
@@ -64,7 +71,12 @@ from .flume_cases import (
     flume_settable_keys,
     headline,
 )
-from .measure import front_error, front_position, water_column_height
+from .measure import (
+    MARTIN_MOYCE_DESCRIPTIONS,
+    front_error,
+    front_position,
+    water_column_height,
+)
 from .output import RunLog, RunOutputs
 from .runrecord import RUN_FIELDS, error_record, rayon_threads, run_record, stop_status
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
@@ -120,14 +132,16 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     if case in FLUME_CASES:
         return flume_builder(case, {o.key: o.text for o in overrides.parse(settings)})
     if case not in CASES:
-        raise CliError(f"case: unknown case {case!r}; valid cases: {', '.join(ALL_CASES)}")
+        raise CliError(f"case: unknown case {case!r}{did_you_mean(case, ALL_CASES)}; valid "
+                       f"cases: {', '.join(ALL_CASES)} or a scene file FILE.toml")
     cls, fixed = CASES[case]
     valid = settable_keys(case)
     hints = typing.get_type_hints(cls)
     values: dict[str, Any] = {}
     for item in overrides.parse(settings):
         if item.key not in valid:
-            why = f"is fixed by the case {case}" if item.key in fixed else f"is unknown for {case}"
+            why = (f"is fixed by the case {case}" if item.key in fixed
+                   else f"is unknown for {case}{did_you_mean(item.key, valid)}")
             raise CliError(f"--set: key {item.key!r} {why}; valid keys: {', '.join(valid)}")
         values[item.key] = item.typed(hints[item.key])
     return cls(**fixed, **values)
@@ -200,7 +214,7 @@ class _Recorder:
     """Run callback: writes front.csv rows (dam breaks) and a progress line every tenth of the run.
 
     Args:
-        front_file: open CSV file for ``t, x_front, h_column`` rows, or ``None`` (no front).
+        front_file: open CSV file for ``t_s, x_front_m, h_column_m`` rows, or ``None`` (no front).
         dp: particle spacing [m].
         until: end time of the run [s].
         say: where progress lines go (``print`` or a no-op).
@@ -215,7 +229,7 @@ class _Recorder:
         self.file = front_file
         self.writer = csv.writer(front_file) if front_file is not None else None
         if self.writer is not None:
-            self.writer.writerow(["t", "x_front", "h_column"])
+            self.writer.writerow(["t_s", "x_front_m", "h_column_m"])
         self.times: list[float] = []
         self.fronts: list[float] = []
         self._next_report = 0.0
@@ -252,10 +266,17 @@ def _positive_option(name: str, value: float | None) -> float | None:
     return value
 
 
+def default_folder(scene: SceneFile) -> Path:
+    """Where a run writes without ``--out`` or ``[output] directory``: ``runs/NAME`` for a scene
+    file NAME.toml, ``runs/CASE-builtin`` for a built-in case, so that a built-in case and a
+    file of the same name (``examples/flume2d.toml``) never share a folder."""
+    return Path("runs") / (scene.name if scene.path is not None else f"{scene.name}-builtin")
+
+
 def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, float | None, bool]:
     """Output folder, snapshot interval and progress bar of a run: the command line first,
     then the scene file's [output] table, then the defaults."""
-    out = Path(args.out or scene.output.directory or Path("runs") / scene.name)
+    out = Path(args.out or scene.output.directory or default_folder(scene))
     if args.sample_every is None:
         args.sample_every = scene.output.sample_every
     _positive_option("--sample-every", args.sample_every)
@@ -290,6 +311,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         args.sample_every = 0.01
     keeper = _last_good_keeper(args)
     sim = builder.build()  # the core's checks (memory, ...) come before the output folder
+    rundir.claim_folder(out, args.overwrite)
     out.mkdir(parents=True, exist_ok=True)
     until = float(builder.until)  # type: ignore[arg-type]
     is_dambreak = isinstance(builder, DamBreak)
@@ -345,14 +367,15 @@ def cmd_run(args: argparse.Namespace) -> int:
     if mm.get("rms_rel_error") is not None:
         lead = mm.get("mean_lead_s")
         lead_text = "not reached" if lead is None else f"{lead:+.3f} s"
+        reference = MARTIN_MOYCE_DESCRIPTIONS.get(mm["reference"], mm["reference"])
         say(
-            f"  front vs Martin & Moyce ({mm['reference']}): RMS relative error "
+            f"  front vs Martin & Moyce 1952 ({reference}): RMS relative error "
             f"{100 * mm['rms_rel_error']:.1f} % over {mm['n_points']} points; "
             f"mean time lead of the simulation {lead_text}"
         )
     say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
     if error is not None:
-        print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
+        print(f"watersim: run stopped: {_stop_message(error)}", file=sys.stderr)
         return 130 if status == "interrupted" else 1
     return 0
 
@@ -366,9 +389,9 @@ def _run_flume(
     progress: bool,
     resumed: rundir.Reopened | None = None,
 ) -> int:
-    """``watersim run`` for a wave flume: summary.json, gauges.csv, analysis.json, log.jsonl,
-    scene.toml and checkpoints/; with ``resumed``, ``watersim resume``: the run continues from
-    its checkpoint into the same files."""
+    """``watersim run`` for a wave flume: summary.json, gauges.csv, velocity_NAME.csv,
+    analysis.json, log.jsonl, scene.toml and checkpoints/; with ``resumed``, ``watersim
+    resume``: the run continues from its checkpoint into the same files."""
     builder = scene.builder
     assert isinstance(builder, FlumeScene)
     name = scene.name
@@ -380,6 +403,8 @@ def _run_flume(
     # the core's checks (memory, ...) come before the output folder
     sim = builder.build() if resumed is None else resumed.sim
     assert isinstance(sim, FlumeSimulation)
+    if resumed is None:
+        rundir.claim_folder(out, args.overwrite)
     out.mkdir(parents=True, exist_ok=True)
     if resumed is None:
         rundir.write_scene(out, scene)
@@ -404,9 +429,13 @@ def _run_flume(
     t_start = time.perf_counter()
     next_report = [0.0]
 
+    def write_records(s: FlumeSimulation) -> dict[str, Path]:
+        s.write_gauges_csv(csv_path)
+        return s.write_velocity_csvs(out)
+
     def on_sample(s: Simulation) -> None:
         assert isinstance(s, FlumeSimulation)
-        s.write_gauges_csv(csv_path)  # records so far survive a crash or an instability
+        write_records(s)  # records so far survive a crash or an instability
         outputs.log.sample(s)
         if not progress and s.time >= next_report[0]:
             say(f"  t = {s.time:.3f} s, {s.steps} steps, dt = {s.dt:.3g} s, "
@@ -420,7 +449,7 @@ def _run_flume(
         meter(s)
 
     def finish() -> None:
-        sim.write_gauges_csv(csv_path)
+        write_records(sim)
         if sim.time >= until:  # a finished run can be extended: resume --until
             checkpointer.save(sim)
 
@@ -447,6 +476,8 @@ def _run_flume(
                      threads=threads),
         **outputs.summary(),
         "gauges_csv": "gauges.csv",
+        "velocity_csv": {name: velocity_csv_name(name)
+                         for name in {**sim.gauges.velocity, **sim.gauges.windows}},
         "analysis_json": "analysis.json",
         "scene_toml": rundir.SCENE_FILE,
         "checkpoints": [str(p.relative_to(out)) for p in rundir.checkpoints(out)],
@@ -463,13 +494,43 @@ def _run_flume(
         summary["error"] = error
         summary["last_good"] = keeper.save_record(_last_good_path(args, out))
     _write_json(out / "summary.json", summary)
-    for line in headline(name, analysis):
+    for line in [*headline(name, analysis), *analysis_notes(analysis)]:
         say(line)
     say(f"{status}: {sim.steps} steps to t = {sim.time:.4g} s in {wall:.1f} s; wrote {out}")
     if error is not None:
-        print(f"watersim: run stopped: {error['message']}", file=sys.stderr)
+        print(f"watersim: run stopped: {_stop_message(error)}", file=sys.stderr)
         return 130 if status == "interrupted" else 1
     return 0
+
+
+MAX_NOTES = 8
+"""Notes of the analysis printed after a run; the rest are in analysis.json."""
+
+
+def analysis_notes(analysis: dict[str, Any]) -> list[str]:
+    """The lines that tell the user what the analysis could not compute: its first notes and,
+    when a part needs a longer record, the end time that makes every part computable."""
+    notes = [str(n) for n in analysis.get("notes") or []]
+    lines = [f"  note: {n}" for n in notes[:MAX_NOTES]]
+    if len(notes) > MAX_NOTES:
+        lines.append(f"  ... {len(notes) - MAX_NOTES} more notes in analysis.json")
+    needs = [g.get("needs_until") for g in analysis.get("gauges") or []]
+    needs.append((analysis.get("runup") or {}).get("needs_until"))
+    needs += (analysis.get("envelopes") or {}).get("needs_until") or []
+    needed = max((float(n) for n in needs if n is not None), default=None)
+    if needed is not None:
+        lines.append(f"  the analysis is incomplete: run with until >= "
+                     f"{math.ceil(needed * 10) / 10:g} s (--set until=...) for every gauge")
+    return lines
+
+
+def _stop_message(error: dict[str, Any]) -> str:
+    """Why a run stopped, never empty (a Ctrl-C carries no message of its own)."""
+    if error.get("message"):
+        return str(error["message"])
+    if error.get("type") == "KeyboardInterrupt":
+        return "interrupted (Ctrl-C); the outputs written so far are kept"
+    return str(error.get("type") or "unknown error")
 
 
 def cmd_resume(args: argparse.Namespace) -> int:
@@ -497,7 +558,7 @@ def cmd_analyse(args: argparse.Namespace) -> int:
     analysis["records_to"] = {"t": reopened.time, "steps": reopened.steps}
     target = Path(args.out) if args.out else folder / "analysis.json"
     _write_json(target, analysis)
-    for line in headline(name, analysis):
+    for line in [*headline(name, analysis), *analysis_notes(analysis)]:
         print(line)
     print(f"wrote {target}")
     return 0
@@ -922,7 +983,11 @@ def build_parser() -> argparse.ArgumentParser:
         "case", metavar="CASE", help=f"a scene file FILE.toml, or one of: {', '.join(ALL_CASES)}"
     )
     run.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help)
-    run.add_argument("--out", metavar="DIR", help="output folder (default: runs/CASE)")
+    run.add_argument("--out", metavar="DIR", help="output folder (default: runs/NAME for a scene "
+                     "file NAME.toml, runs/CASE-builtin for a built-in case)")
+    run.add_argument("--overwrite", action="store_true",
+                     help="delete an earlier run's outputs in the output folder first (without "
+                     "it, a folder holding them is refused)")
     run.add_argument(
         "--sample-every",
         type=float,

@@ -1,11 +1,21 @@
 """The command line's error type, in a module of its own so that every command's module
 (:mod:`watersim.cli`, :mod:`watersim.stress`, :mod:`watersim.overrides`, ...) can raise it
-without importing the command line."""
+without importing the command line; and the "did you mean" hint their messages share."""
 
 from __future__ import annotations
 
-__all__ = ["CliError"]
+import difflib
+from collections.abc import Iterable
+
+__all__ = ["CliError", "did_you_mean"]
 
 
 class CliError(Exception):
     """Bad command-line input: printed as one line, exit code 2."""
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """``" (did you mean 'x'?)"`` for the choice closest to a mistyped ``word`` (difflib's
+    ratio of at least 0.6), or ``""`` when none is close."""
+    close = difflib.get_close_matches(word, list(choices), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""

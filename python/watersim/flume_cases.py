@@ -36,6 +36,7 @@ import numpy as np
 
 from . import analysis as an
 from . import wave_theory as wt
+from .errors import did_you_mean
 from .flume import (
     DampingZone,
     ElevationGauge,
@@ -390,7 +391,8 @@ def flume_builder(case: str, items: Mapping[str, str]) -> FlumeScene:
     for key in items:
         if key not in valid:
             raise FlumeCaseError(
-                f"--set: key {key!r} is unknown for {case}; valid keys: {', '.join(valid)}"
+                f"--set: key {key!r} is unknown for {case}{did_you_mean(key, valid)}; valid "
+                f"keys: {', '.join(valid)}"
             )
     s = _Settings(items)
     return FLUME_CASES[case].make(s)

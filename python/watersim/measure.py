@@ -26,6 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "MARTIN_MOYCE_DESCRIPTIONS",
     "MARTIN_MOYCE_HEIGHT_FILE",
     "MARTIN_MOYCE_SETS",
     "FrontError",
@@ -44,6 +45,14 @@ MARTIN_MOYCE_SETS: dict[str, str] = {
     "pysph_a1.125in": "mm1952_front_n2-2_a1.125in_pysph.csv",
 }
 """Martin & Moyce n^2 = 2 front sets shipped in ``watersim/data``; ``"lethe"`` is the primary."""
+
+MARTIN_MOYCE_DESCRIPTIONS: dict[str, str] = {
+    "lethe": "their n^2 = 2 table as transcribed by the Lethe project",
+    "pysph_a2.25in": "digitised from their Fig. 3, a = 2.25 in, by PySPH",
+    "pysph_a1.125in": "digitised from their Fig. 3, a = 1.125 in, by PySPH",
+}
+"""What each set of :data:`MARTIN_MOYCE_SETS` is, in words for the console and the figures
+(``watersim/data/SOURCES.md`` gives the provenance)."""
 
 MARTIN_MOYCE_HEIGHT_FILE = "mm1952_height_n2-2_ocellaris.csv"
 """Martin & Moyce (1952) residual column height for n^2 = 2, as transcribed in Ocellaris from the

@@ -22,8 +22,10 @@ as an :class:`xarray.Dataset`.
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import re
+import shutil
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -45,8 +47,9 @@ if TYPE_CHECKING:
     import xarray
 
 __all__ = [
-    "CHECKPOINTS", "KEEP", "SCENE_FILE", "CheckpointEvery", "Checkpointer", "Reopened",
-    "RunDirError", "analyse", "checkpoints", "load", "reopen", "write_scene",
+    "CHECKPOINTS", "KEEP", "RUN_FILES", "RUN_FOLDERS", "SCENE_FILE", "CheckpointEvery",
+    "Checkpointer", "Reopened", "RunDirError", "analyse", "checkpoints", "claim_folder",
+    "earlier_outputs", "load", "reopen", "write_scene",
 ]
 
 SCENE_FILE = "scene.toml"
@@ -55,6 +58,15 @@ KEEP = 2
 """Checkpoints kept: the newest and the one before, in case the newest is damaged after all."""
 
 _CHECKPOINT_NAME = re.compile(r"^ckpt_(\d+)\.npz$")
+
+RUN_FILES: tuple[str, ...] = (
+    "summary.json", "log.jsonl", "gauges.csv", "velocity_*.csv", "analysis.json", "front.csv",
+    SCENE_FILE, "last_good.npz",
+)
+"""The files (glob patterns) a run writes into its folder."""
+
+RUN_FOLDERS: tuple[str, ...] = (CHECKPOINTS, "snapshots", "plots")
+"""The folders a run (and ``watersim plot``) writes into its folder."""
 
 
 class RunDirError(SceneError):
@@ -166,6 +178,54 @@ def checkpoints(directory: str | Path) -> list[Path]:
     found = [(int(m.group(1)), p) for p in folder.iterdir()
              if (m := _CHECKPOINT_NAME.match(p.name))]
     return [p for _, p in sorted(found)]
+
+
+def earlier_outputs(directory: str | Path) -> list[Path]:
+    """What earlier runs left in ``directory``: the files of :data:`RUN_FILES` and the folders of
+    :data:`RUN_FOLDERS` found there (nothing else it holds)."""
+    folder = Path(directory)
+    if not folder.is_dir():
+        return []
+    found = {p for pattern in RUN_FILES for p in folder.glob(pattern) if p.is_file()}
+    found.update(folder / name for name in RUN_FOLDERS if (folder / name).is_dir())
+    return sorted(found)
+
+
+def _earlier_case(folder: Path) -> str:
+    """`` (case NAME, status STATUS)`` of the run whose summary.json is in ``folder``, or ``""``."""
+    try:
+        summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+        return f" (case {summary['case']}, status {summary['status']})"
+    except (OSError, ValueError, KeyError, TypeError):
+        return ""
+
+
+def claim_folder(directory: str | Path, overwrite: bool) -> None:
+    """Make ``directory`` ready for a new run's outputs.
+
+    A folder that holds an earlier run's outputs (:func:`earlier_outputs`) is refused, so that no
+    run mixes its files with another's (old snapshots, checkpoints or velocity files of another
+    scene would stay next to the new ones); with ``overwrite`` those outputs are deleted first.
+    Other files in the folder are left alone either way.
+
+    Raises:
+        RunDirError: the folder holds an earlier run's outputs and ``overwrite`` is false.
+    """
+    folder = Path(directory)
+    found = earlier_outputs(folder)
+    if found and not overwrite:
+        names = ", ".join(p.name + ("/" if p.is_dir() else "") for p in found[:6])
+        more = f" and {len(found) - 6} more" if len(found) > 6 else ""
+        hint = (f"; `watersim resume {folder}` continues it"
+                if checkpoints(folder) and not (folder / "summary.json").is_file() else "")
+        raise RunDirError(
+            f"{folder}: holds the outputs of an earlier run{_earlier_case(folder)}: {names}"
+            f"{more}; --overwrite deletes them first, --out DIR writes elsewhere{hint}")
+    for path in found:
+        if path.is_dir():
+            shutil.rmtree(path)
+        else:
+            path.unlink()
 
 
 def write_scene(directory: str | Path, scene: SceneFile) -> Path:

@@ -49,6 +49,7 @@ from . import overrides
 from ._core import SceneError
 from . import flume
 from .flume import FlumeScene, MeshBeach
+from .errors import did_you_mean
 from .scenes import (
     BOUNDARY_MODELS,
     DIFFUSION_MODELS,
@@ -319,8 +320,9 @@ class _Reader:
             if tag is None:
                 raise self.fail(_join(path, "type"), f"required; one of {_quoted(tags)}")
             if not isinstance(tag, str) or tag not in tags:
+                hint = did_you_mean(tag, tags) if isinstance(tag, str) else ""
                 raise self.fail(_join(path, "type"),
-                                f"unknown value {tag!r}; one of {_quoted(tags)}")
+                                f"unknown value {tag!r}{hint}; one of {_quoted(tags)}")
             return self.table(raw, tags[tag], path, tagged=True)
         for m in members:
             if m is bool and isinstance(raw, bool):
@@ -343,7 +345,8 @@ class _Reader:
                 continue
             if key not in fields:
                 valid = ", ".join(fields)
-                raise self.fail(_join(path, key), f"unknown key for {cls.__name__}; valid keys: "
+                raise self.fail(_join(path, key), f"unknown key for {cls.__name__}"
+                                f"{did_you_mean(key, fields)}; valid keys: "
                                 f"{'type, ' if tagged else ''}{valid}")
             kwargs[key] = self.value(item, hints[key], _join(path, key))
         for name, f in fields.items():

@@ -986,7 +986,7 @@ def cmd_stress(args: Any) -> int:
 
 def add_parser(sub: Any) -> None:
     """Register ``watersim stress`` on the CLI's sub-parsers."""
-    p = sub.add_parser("stress", help="run the matrix of stiff and extreme cases (issue 5)")
+    p = sub.add_parser("stress", help="run the matrix of stiff and extreme cases")
     p.add_argument("--quick", action="store_true",
                    help="reduced matrix (about 2 minutes on 2 cores with --jobs 2)")
     p.add_argument("--json", metavar="FILE", help="write the run records as JSON")

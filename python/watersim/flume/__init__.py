@@ -54,7 +54,7 @@ small input checks the models share.
 """
 
 from .analyse import analyse_flume
-from .bed import DampingZone, MeshBeach, PlaneBeach, ProfileBeach
+from .bed import DampingZone, MeshBeach, PlaneBeach, ProfileBeach, SteepSlopeWarning
 from .gauges import (
     GAUGE_TYPES,
     SURFACE_METHODS,
@@ -93,6 +93,7 @@ __all__ = [
     "RegularWave",
     "RunupGauge",
     "SolitaryWave",
+    "SteepSlopeWarning",
     "TabulatedMotion",
     "VelocityProbe",
     "VelocityWindow",

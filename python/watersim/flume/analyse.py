@@ -23,6 +23,30 @@ if TYPE_CHECKING:
     from .scene import FlumeScene
 
 
+MIN_WINDOW_PERIODS = 3.0
+"""Wave periods of steady record that wave statistics, run-up per wave and reflection need at
+the least: any window of three periods holds two whole zero-down-crossing waves, whatever the
+phase it starts at (fewer periods may hold a single wave, or none)."""
+
+MIN_WAVES = 2
+"""Whole waves a gauge's statistics need at the least."""
+
+UNITS: dict[str, str] = {
+    "x": "m", "y": "m", "still_depth": "m", "still_water_depth": "m", "window": "s",
+    "needs_until": "s", "record_end": "s", "H_mean": "m", "H_max": "m", "H_min": "m",
+    "H_rms": "m", "H_significant": "m", "H_target": "m", "H_rel_error": "1", "T_mean": "s",
+    "crest_mean": "m", "trough_mean": "m", "mean_level": "m", "harmonics": "m", "hm0": "m",
+    "tp": "s", "eta_max": "m", "t_max": "s", "maximum": "m", "minimum": "m", "mean": "m",
+    "mid_level": "m", "position": "m", "time": "s", "wave_height": "m", "max_height": "m",
+    "max_height_position": "m", "iribarren": "1", "slope": "1", "max": "m", "R2": "m",
+    "std": "m", "values": "m", "mean_over_H": "1", "std_over_H": "1", "coefficient": "1",
+    "incident_amplitude": "m", "reflected_amplitude": "m", "period": "s", "height": "m",
+    "wavelength": "m", "ramp_duration": "s", "stroke": "m",
+}
+"""The units of analysis.json's quantities, by key wherever it appears ("1": a pure number;
+elevations and levels are relative to the still-water level, times from the start of the run)."""
+
+
 def _f(value: Any) -> float | None:
     """A JSON-ready float (None for NaN/inf/None)."""
     if value is None:
@@ -110,6 +134,30 @@ class _Run:
         extra = self.period if self.period is not None else 0.0
         return self.law.ramp_duration + self.setup.arrival_time(x) + extra
 
+    def needed_end(self, start: float) -> float | None:
+        """The record end [s] a window from ``start`` [s] needs for periodic waves
+        (:data:`MIN_WINDOW_PERIODS` periods), or None for waves without a period."""
+        if not (self.regular or self.irregular) or self.period is None:
+            return None
+        return start + MIN_WINDOW_PERIODS * self.period
+
+    def too_short(self, start: float) -> float | None:
+        """The end time [s] a window from ``start`` needs when the record ends before it,
+        else None. A run to that end time qualifies: its last sample may fall up to a sample
+        interval before it."""
+        needed = self.needed_end(start)
+        slack = float(self.setup.sample_interval or 0.0) + 1e-9
+        if needed is not None and self.end < needed - slack:
+            return needed
+        return None
+
+    def short_note(self, what: str, start: float, needed: float, why: str) -> str:
+        """A note that ``what`` needs the record to ``needed`` [s] (a window from ``start``,
+        ``why`` it starts there) and what to run."""
+        return (f"{what}: not computed; needs {MIN_WINDOW_PERIODS:g} wave periods of steady "
+                f"record from t = {start:.3g} s ({why}) to {needed:.3g} s, but the record ends "
+                f"at {self.end:.3g} s: run with until >= {math.ceil(needed * 10) / 10:g} s")
+
 
 def analyse_flume(
     setup: FlumeScene,
@@ -123,7 +171,10 @@ def analyse_flume(
     Time windows: each gauge is analysed over its *steady part*, from the wave's arrival
     (:meth:`FlumeScene.arrival_time`) plus the ramp plus one period, to the end of the record
     (``t_start``, if given, overrides the start for every gauge). Records are resampled on a
-    uniform grid of ``sample_interval`` and dry samples read the bed level.
+    uniform grid of ``sample_interval`` and dry samples read the bed level. Periodic waves need
+    :data:`MIN_WINDOW_PERIODS` periods of window: where the record is shorter, the part is not
+    computed, ``needs_until`` gives the end time it needs and a note says what to run (a part
+    of a window is never analysed as a whole one).
 
     Keys:
 
@@ -135,7 +186,8 @@ def analyse_flume(
       harmonic amplitudes [m]) for regular waves; ``hm0``, ``tp`` (spectrum) for irregular waves;
       ``eta_max`` and ``t_max`` for solitary waves and tabulated motions.
     - ``envelopes``: ``name``, ``x``, ``maximum``, ``minimum``, ``mean``, ``mid_level`` per gauge
-      sorted by x (seed 001 Fig. 8), each over its steady part.
+      sorted by x (seed 001 Fig. 8), each over its steady part (None where it is too short, with
+      the end time it needs in ``needs_until``).
     - ``breaking`` (with a beach): ``criterion`` H/d > 0.78 from the gauges' waves, ``position``,
       ``time``, ``wave_height``, ``iribarren`` and ``breaker_type`` from that height, plus
       ``max_height_position`` / ``max_height`` (where the mean wave height peaks among the
@@ -152,6 +204,7 @@ def analyse_flume(
       paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``,
       ``gauges``, ``coefficient``, ``incident_amplitude``, ``reflected_amplitude``.
     - ``notes``: what could not be computed and why.
+    - ``units``: the unit of each quantity by key (:data:`UNITS`).
     """
     notes: list[str] = []
     t, eta, runup = gauges.uniform()
@@ -164,6 +217,7 @@ def analyse_flume(
         "record_end": run.end,
         "gauges": [],
         "notes": notes,
+        "units": UNITS,
     }
     waves = [_gauge_waves(run, j) for j in range(len(gauges.names))]
     result["gauges"] = [entry for entry, _ in waves]
@@ -201,13 +255,19 @@ def _gauge_waves(run: _Run, j: int) -> tuple[dict[str, Any], float | None]:
             k = int(np.argmax(eta[:, j]))
             entry.update(eta_max=_f(eta[k, j]), t_max=_f(t[k]))
         return entry, None
-    if not (ts.size >= 4 and (T is None or end - t0 >= T)):
-        notes.append(
-            f"{name}: the steady part starts at t = {t0:.3g} s, after the record's end "
-            f"({end:.3g} s); run longer for wave statistics"
-        )
+    needed = run.too_short(t0)
+    if needed is not None or ts.size < 4:
+        needed = needed if needed is not None else t0 + float(T or 0.0) * MIN_WINDOW_PERIODS
+        entry["needs_until"] = needed
+        notes.append(run.short_note(f"{name} (x = {x:g} m) wave statistics", t0, needed,
+                                    _WHY_GAUGE_WINDOW))
         return entry, None
     zc = _caught(functools.partial(an.zero_crossing_waves, series, ts), notes, name)
+    if zc is not None and zc.heights.size < MIN_WAVES:
+        notes.append(f"{name} (x = {x:g} m) wave statistics: not computed; the window "
+                     f"{t0:.3g}-{end:.3g} s holds {zc.heights.size} whole wave, fewer than "
+                     f"{MIN_WAVES}: run longer")
+        zc = None
     mean_h = None if zc is None else float(zc.mean_height)
     if zc is not None:
         entry.update(
@@ -238,23 +298,33 @@ def _gauge_waves(run: _Run, j: int) -> tuple[dict[str, Any], float | None]:
     return entry, mean_h
 
 
+_WHY_GAUGE_WINDOW = "the ramp, the waves' arrival at the gauge and one period"
+
+_ENVELOPE_KEYS = ("maximum", "minimum", "mean", "mid_level")
+
+
 def _envelopes(run: _Run) -> dict[str, list[Any]]:
     """Highest, lowest, mean and mid water level at each gauge (sorted by x) over its steady
-    part (the whole record when that part has fewer than two samples)."""
+    part; None (and the record end it needs in ``needs_until``) where that part is too short
+    (:meth:`_Run.too_short`, or fewer than two samples): a part of a window is no envelope."""
     gauges, t, eta = run.gauges, run.t, run.eta
-    env: dict[str, list[Any]] = {"name": [], "x": [], "maximum": [], "minimum": [],
-                                 "mean": [], "mid_level": []}
+    env: dict[str, list[Any]] = {"name": [], "x": [], **{k: [] for k in _ENVELOPE_KEYS},
+                                 "needs_until": []}
     for j in np.argsort(gauges.x, kind="stable"):
-        sel = t >= run.window_start(float(gauges.x[j]))
-        if np.count_nonzero(sel) < 2:
-            sel = np.ones_like(t, dtype=bool)
-        e = an.water_level_envelopes(eta[sel, j])
+        t0 = run.window_start(float(gauges.x[j]))
+        sel = t >= t0
+        needed = run.too_short(t0)
         env["name"].append(gauges.names[j])
         env["x"].append(float(gauges.x[j]))
-        env["maximum"].append(_f(e.maximum))
-        env["minimum"].append(_f(e.minimum))
-        env["mean"].append(_f(e.mean))
-        env["mid_level"].append(_f(e.mid_level))
+        if needed is not None or np.count_nonzero(sel) < 2:
+            for key in _ENVELOPE_KEYS:
+                env[key].append(None)
+            env["needs_until"].append(needed if needed is not None else t0)
+            continue
+        e = an.water_level_envelopes(eta[sel, j])
+        for key in _ENVELOPE_KEYS:
+            env[key].append(_f(getattr(e, key)))
+        env["needs_until"].append(None)
     return env
 
 
@@ -330,8 +400,16 @@ def _runup(run: _Run, runup: npt.NDArray[np.float64]) -> dict[str, Any]:
         runup_start = run.t_start
     sel = t >= runup_start
     info["window"] = [runup_start, run.end]
+    needed = run.too_short(runup_start)
+    if needed is not None:
+        info["needs_until"] = needed
+        notes.append(run.short_note("runup", runup_start, needed,
+                                    "the ramp and the waves' arrival at the shoreline"))
+        return info
     if np.count_nonzero(sel) < 2:
-        notes.append("runup: the record ends before the waves reach the shoreline")
+        info["needs_until"] = runup_start
+        notes.append(f"runup: not computed; the record ends at {run.end:.3g} s, before the "
+                     f"waves reach the shoreline (t = {runup_start:.3g} s)")
         return info
     info["max"] = _f(np.max(runup[sel]))
     if run.regular and T is not None:
@@ -397,8 +475,12 @@ def _reflection(run: _Run) -> dict[str, Any] | None:
     kwargs: dict[str, Any] = (
         {"period": T} if run.regular else {"frequency_band": (0.5 / T, 2.0 / T)}
     )
-    if not (np.count_nonzero(sel) >= 8 and t[-1] - t0 >= T):
-        notes.append("reflection: the record is too short after the waves arrive")
+    needed = run.too_short(t0)
+    if needed is not None or np.count_nonzero(sel) < 8:
+        needed = needed if needed is not None else t0 + MIN_WINDOW_PERIODS * T
+        notes.append(run.short_note(
+            f"reflection (gauges {', '.join(gauges.names[int(j)] for j in idx)})", t0, needed,
+            "the ramp, the waves' arrival at the farthest of its gauges and one period"))
         return None
     refl = _caught(
         lambda: method(eta[np.ix_(sel, idx)], t[sel], gauges.x[idx], depth, g=g, **kwargs),

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -22,6 +23,11 @@ if TYPE_CHECKING:
 
 Profile = tuple[Sequence[float], Sequence[float]]
 """Bed vertices ``(x, z)`` [m]."""
+
+
+class SteepSlopeWarning(UserWarning):
+    """A plane beach steeper than 1:1: more likely a slope written as run over rise (5 for 1:5)
+    than a wall meant as a beach."""
 
 
 class _Bed:
@@ -76,7 +82,8 @@ class PlaneBeach(_Bed):
 
     Attributes:
         toe: x of the toe, where the slope leaves the floor [m] (from the paddle at rest).
-        slope: tan(beta), rise over run [-] (1/15 for a 1:15 beach).
+        slope: tan(beta), rise over run [-] (1/15 for a 1:15 beach); above 1 (steeper than
+            45 degrees) gives a :class:`SteepSlopeWarning`.
     """
 
     toe: float
@@ -89,6 +96,11 @@ class PlaneBeach(_Bed):
         slope = _positive("beach.slope", self.slope)
         if slope > 10.0:
             raise SceneError(f"beach.slope: tan(beta) = {slope:g} is steeper than 10; use a wall")
+        if slope > 1.0:
+            warnings.warn(
+                f"beach.slope: tan(beta) = {slope:g} rises {math.degrees(math.atan(slope)):.0f} "
+                f"degrees, steeper than 1:1; slope is rise over run, so a 1:{slope:g} beach is "
+                f"slope = {1.0 / slope:.6g}", SteepSlopeWarning, stacklevel=3)
         _set(self, "slope", slope)
 
     def profile(self, length: float, top: float) -> tuple[list[float], list[float]]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 import typing
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -19,7 +20,22 @@ if TYPE_CHECKING:
     from .scene import FlumeScene
 
 Series = tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]
-"""A gauge's column of ``gauges.csv``: ``(name, t [s], values)``."""
+"""A gauge's column of ``gauges.csv``: ``(column name, t [s], values)``."""
+
+_NOT_IN_A_NAME = re.compile(r"[^A-Za-z0-9_]")
+
+
+def csv_column(name: str, unit: str = "") -> str:
+    """The CSV column of a quantity ``name`` in ``unit`` (``"m"``, ``"s"``, ``"m_per_s"``; none
+    for a pure number): a name NumPy's ``genfromtxt(names=True)`` and pandas read unchanged.
+
+    genfromtxt deletes dots and most punctuation from column names, so a decimal point becomes
+    ``p`` and a minus sign ``n`` (``eta_x1.000`` in m: ``eta_x1p000_m``); any other character
+    outside letters, digits and ``_`` becomes ``_``.
+    """
+    text = name.replace(".", "p").replace("-", "n")
+    text = _NOT_IN_A_NAME.sub("_", text)
+    return f"{text}_{unit}" if unit else text
 
 SURFACE_METHODS: tuple[str, ...] = ("kernel", "particle")
 """Free-surface methods of elevation and run-up gauges (DESIGN.md section 4): ``"kernel"``, the
@@ -236,8 +252,10 @@ class ElevationGauge(_Gauge):
 
     @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
-        """One column per gauge: eta above the SWL [m], ``nan`` when dry."""
-        return [(name, gauges.t, gauges.elevation[:, j]) for j, name in enumerate(gauges.names)]
+        """One column per gauge: eta above the SWL [m], ``nan`` when dry
+        (``eta_x1.000``: ``eta_x1p000_m``)."""
+        return [(csv_column(name, "m"), gauges.t, gauges.elevation[:, j])
+                for j, name in enumerate(gauges.names)]
 
 
 @dataclass(frozen=True)
@@ -413,10 +431,10 @@ class RunupGauge(_Gauge):
 
     @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
-        """The run-up: elevation above the SWL [m]."""
+        """The run-up: elevation above the SWL [m] (``runup_m``)."""
         if gauges.runup_name is None or gauges.runup is None or gauges.runup_t is None:
             return []
-        return [(gauges.runup_name, gauges.runup_t, gauges.runup)]
+        return [(csv_column(gauges.runup_name, "m"), gauges.runup_t, gauges.runup)]
 
 
 Gauge = ElevationGauge | VelocityProbe | VelocityWindow

@@ -1,4 +1,4 @@
-"""The gauge records of a flume run as NumPy arrays, and their CSV file."""
+"""The gauge records of a flume run as NumPy arrays, and their CSV files."""
 
 from __future__ import annotations
 
@@ -11,12 +11,23 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from .gauges import GAUGE_TYPES, Series, VelocityRecord
+from .gauges import GAUGE_TYPES, Series, VelocityRecord, csv_column
 
 if TYPE_CHECKING:
     from .scene import FlumeScene
 
-__all__ = ["FlumeGauges", "VelocityRecord"]
+__all__ = ["DRY_KERNEL_SUM", "FlumeGauges", "VelocityRecord", "velocity_csv_name"]
+
+DRY_KERNEL_SUM = 0.5
+"""A velocity point whose kernel volume sum is below this is out of the water (dry)."""
+
+_COMPONENTS = {2: ("u", "w"), 3: ("u", "v", "w")}
+"""Velocity components along x (u), y (v) and z (w), the axes of the flume."""
+
+
+def velocity_csv_name(name: str) -> str:
+    """The file a velocity probe or window ``name`` is written to: ``velocity_NAME.csv``."""
+    return f"velocity_{csv_column(name)}.csv"
 
 
 class FlumeGauges:
@@ -124,29 +135,69 @@ class FlumeGauges:
         return [s for cls in GAUGE_TYPES.values() for s in cls.csv_series(self)]
 
     def columns(self) -> list[str]:
-        """Column names of :meth:`to_csv`: ``t``, the elevation gauges, the run-up gauge (and
-        the columns of any other gauge kind that declares some)."""
-        return ["t", *(name for name, _, _ in self._csv_series())]
+        """Column names of :meth:`to_csv`, each with its unit: ``t_s``, the elevation gauges
+        (``eta_x1p000_m``), the run-up gauge (``runup_m``) and the columns of any other gauge
+        kind that declares some (see :func:`~watersim.flume.gauges.csv_column`)."""
+        return ["t_s", *(name for name, _, _ in self._csv_series())]
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write ``t``, one column per elevation gauge (eta above the SWL [m], ``nan`` when dry)
-        and the run-up (elevation above the SWL [m]) on the elevation gauges' times (on the
+        """Write ``t_s``, one column per elevation gauge (eta above the SWL [m], ``nan`` when
+        dry) and the run-up (elevation above the SWL [m]) on the elevation gauges' times (on the
         first column's own times when the elevation gauges have none yet).
 
         Written to a temporary file first and renamed, so a reader never sees half a file.
         """
-        out = Path(path)
-        tmp = out.with_name(out.name + ".tmp")
         series = self._csv_series()
         base = self.t if self.t.size else next((ts for _, ts, _ in series if ts.size), self.t)
         cols = [c for c in (_on(base, ts, values) for _, ts, values in series) if c is not None]
-        with open(tmp, "w", newline="", encoding="utf-8") as f:
-            writer = csv.writer(f)
-            writer.writerow(self.columns())
-            for i, tk in enumerate(base):
-                writer.writerow([repr(float(tk))] + [repr(float(c[i])) for c in cols])
-        tmp.replace(out)
-        return out
+        return _write_table(Path(path), self.columns(), [base, *cols])
+
+    def velocity_columns(self, name: str) -> tuple[list[str], list[npt.NDArray[np.float64]]]:
+        """Header and columns of the velocity probe or window ``name``'s CSV file: ``t_s``,
+        then per point (``x4p000_z0p100``: its position x, (y,) z [m]) the velocity components
+        ``u``, (``v``,) ``w`` along x, (y,) z [m/s], ``nan`` where the point is dry (kernel sum
+        below :data:`DRY_KERNEL_SUM`), and the point's ``kernel_sum`` [-]."""
+        record = {**self.velocity, **self.windows}[name]
+        points = np.asarray(record.points, dtype=np.float64)
+        n = record.t.size
+        velocity = np.asarray(record.velocity, dtype=np.float64).reshape(n, len(points), -1)
+        ksum = np.asarray(record.kernel_sum, dtype=np.float64).reshape(n, len(points))
+        axes = ("x", "z") if points.shape[1] == 2 else ("x", "y", "z")
+        header, cols = ["t_s"], [record.t]
+        labels: set[str] = set()
+        for k, point in enumerate(points):
+            label = csv_column("_".join(f"{a}{c:.3f}" for a, c in zip(axes, point, strict=True)))
+            if label in labels:  # two points at one place (to the millimetre)
+                label += f"_{k}"
+            labels.add(label)
+            dry = ksum[:, k] < DRY_KERNEL_SUM
+            for c, component in enumerate(_COMPONENTS[velocity.shape[2]]):
+                header.append(f"{component}_{label}_m_per_s")
+                cols.append(np.where(dry, np.nan, velocity[:, k, c]))
+            header.append(f"kernel_sum_{label}")
+            cols.append(ksum[:, k])
+        return header, cols
+
+    def velocity_to_csv(self, directory: str | os.PathLike[str]) -> dict[str, Path]:
+        """Write each velocity probe and window to ``DIRECTORY/velocity_NAME.csv`` (see
+        :meth:`velocity_columns`), on its own sampling times; returns the files by gauge name."""
+        folder = Path(directory)
+        return {name: _write_table(folder / velocity_csv_name(name), *self.velocity_columns(name))
+                for name in {**self.velocity, **self.windows}}
+
+
+def _write_table(path: Path, header: list[str],
+                 columns: list[npt.NDArray[np.float64]]) -> Path:
+    """Write a CSV table of float ``columns`` (the first one's length) under ``header``, to a
+    temporary file first and renamed, so a reader never sees half a file."""
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        writer.writerow(header)
+        for i in range(len(columns[0])):
+            writer.writerow([repr(float(c[i])) for c in columns])
+    tmp.replace(path)
+    return path
 
 
 def _on(t: npt.NDArray[np.float64], ts: npt.NDArray[np.float64],

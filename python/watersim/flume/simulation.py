@@ -95,6 +95,11 @@ class FlumeSimulation(Simulation):
         """Write ``gauges.csv`` (see :meth:`FlumeGauges.to_csv`)."""
         return self.gauges.to_csv(path)
 
+    def write_velocity_csvs(self, directory: str | os.PathLike[str]) -> dict[str, Path]:
+        """Write ``velocity_NAME.csv`` per velocity probe and window into ``directory`` (see
+        :meth:`FlumeGauges.velocity_to_csv`); returns the files by gauge name."""
+        return self.gauges.velocity_to_csv(directory)
+
     def analyse(self, t_start: float | None = None) -> dict[str, Any]:
         """The wave analysis of the records so far (see :func:`analyse_flume`)."""
         return analyse_flume(self.setup, self.gauges, t_start=t_start,

@@ -207,6 +207,8 @@ class Case:
         report_details: keys of the records' ``details`` the report tabulates.
         depth: a wave flume's still-water depth [m], which dp must divide (:meth:`dp`); ``None``
             for the other cases.
+        modules: optional packages (not WaterSim's own dependencies) the case imports, checked
+            before a sweep starts.
     """
 
     name: str
@@ -223,6 +225,7 @@ class Case:
     report_note: str = ""
     report_details: tuple[str, ...] = ()
     depth: float | None = None
+    modules: tuple[str, ...] = ()
 
     def dp(self, resolution: float) -> float:
         """Particle spacing [m] of a resolution: ``length / resolution``, for a wave flume
@@ -936,7 +939,8 @@ CASES: dict[str, Case] = {
              "amplitude lost per period; inviscid linear theory has none (the physical viscous "
              "decay of this tank is far below 1 % per period).",
              report_details=("period_linear", "period_simulated", "amplitude_initial",
-                             "decay_rate")),
+                             "decay_rate"),
+             modules=("scipy",)),  # the damped-oscillation fit (metrics.damped_oscillation_fit)
         Case("flume2d", "flat flume, regular wave H = 0.1 m, T = 1.2 s, d = 0.3 m",
              "target height; linear and Stokes third-order wavelength", "wave height / dp",
              FLUME2D_HEIGHT, (2.5, 5.0, 10.0), (2.0,), "H_3L", 0.05,

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import importlib.util
 import json
 import math
 import multiprocessing
@@ -77,6 +78,35 @@ def plan(cases: Sequence[str], resolutions: Sequence[float] | None, quick: bool
             case.quick_resolutions if quick else case.resolutions)
         tasks += [(name, float(r)) for r in res]
     return tasks
+
+
+INSTALL_HINTS: dict[str, str] = {
+    "scipy": "pip install scipy (or the package with its extra: pip install '.[validation]')",
+    "distributed": "pip install 'dask[distributed]' (or pip install '.[dask]')",
+}
+"""How to install each optional package a sweep may need."""
+
+
+def check_modules(tasks: Sequence[tuple[str, float]], scheduler: str | None) -> None:
+    """Refuse, before anything runs, a sweep that needs a package that is not installed: a
+    case's :attr:`Case.modules`, and Dask's ``distributed`` for ``--scheduler``.
+
+    Raises:
+        ValidateError: one line naming the package, what needs it and how to install it.
+    """
+    needs: dict[str, list[str]] = {}
+    for name in dict.fromkeys(name for name, _ in tasks):
+        for module in CASES[name].modules:
+            needs.setdefault(module, []).append(name)
+    if scheduler is not None:
+        needs.setdefault("distributed", []).append("--scheduler")
+    for module, users in needs.items():
+        if importlib.util.find_spec(module) is None:
+            cases = [u for u in users if u in CASES]
+            without = f", or leave out {', '.join(cases)}" if cases else ""
+            raise ValidateError(f"{' and '.join(users)}: needs {module}, which is not "
+                                f"installed: {INSTALL_HINTS.get(module, f'pip install {module}')}"
+                                f"{without}")
 
 
 def machine_info() -> dict[str, Any]:
@@ -251,6 +281,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if args.scheduler is not None and args.jobs != 1:
             raise ValidateError("--jobs: not used with --scheduler (the cluster's workers run "
                                 "the sweep)")
+        check_modules(tasks, args.scheduler)
         if args.json is not None:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         progress = sys.stderr.isatty()
@@ -275,8 +306,16 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 def add_parser(sub: Any) -> argparse.ArgumentParser:
     """Register ``validate`` on the ``watersim`` sub-command parsers."""
-    p = sub.add_parser("validate", help="run validation cases at several resolutions and report "
-                       "error against run time")
+    p = sub.add_parser(
+        "validate", help="run validation cases at several resolutions and report error against "
+        "run time",
+        description="Run validation cases at several resolutions and report error against run "
+        "time. Without CASE and --quick it runs every case at its three resolutions, about two "
+        "hours on two cores (the committed report, docs/validation/README.md: 30 runs, 6,800 s "
+        "of wall time one after another, the longest, kimmoun2d, 40 minutes); --quick runs "
+        "every case once, coarse and short, in a few minutes. standing2d needs scipy (pip install "
+        "scipy, or pip install '.[validation]'); --scheduler needs dask[distributed]; both are "
+        "checked before anything runs.")
     p.add_argument("cases", nargs="*", metavar="CASE", help=f"any of: {', '.join(CASES)} "
                    "(default: all)")
     p.add_argument("--resolutions", metavar="A,B,C", help="resolutions for every case given "
