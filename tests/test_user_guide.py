@@ -1,4 +1,4 @@
-"""The code of docs/user-guide.md runs, and its scene file is its Python case."""
+"""The code and commands of docs/user-guide.md run, and its scene file is its Python case."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import run_cli
 from watersim import scenefile as sf
 
 GUIDE = Path(__file__).resolve().parents[1] / "docs" / "user-guide.md"
@@ -57,3 +58,32 @@ def test_python_example_runs_and_matches_the_scene_file(
     exec(compile(reading, "user-guide.md", "exec"), ns)
     assert ns["t"].shape == ns["eta_1m"].shape  # type: ignore[attr-defined]
     assert ns["xz"].shape == (sim.n_fluid, 2)  # type: ignore[attr-defined]
+
+
+def test_command_line_walk_through(tmp_path: Path) -> None:
+    """The guide's `watersim` commands in order, in a fresh folder, each run shortened to 0.3 s
+    (resume to 0.5 s); running the first command again is refused (its folder holds a run)."""
+    (tmp_path / "beach.toml").write_text(_blocks("toml")[0])
+    shell = _blocks("sh")
+    commands = [line.split("#")[0].split() for block in (shell[0], shell[2])
+                for line in block.splitlines() if line.strip()]
+    assert [c[:2] for c in commands] == [["watersim", "run"], ["watersim", "run"],
+                                         ["watersim", "plot"], ["watersim", "resume"],
+                                         ["watersim", "resume"], ["watersim", "analyse"]]
+    shortened = {"run": ["--set", "until=0.3", "--quiet"], "resume": ["--quiet"]}
+    for command in commands:
+        args = command[1:]
+        if args[0] == "resume" and "--until" in args:
+            args[args.index("--until") + 1] = "0.5"
+        if args[0] == "analyse":
+            args[args.index("--t-start") + 1] = "0.1"
+        if args[0] == "resume" and "--until" not in args:
+            continue  # the run finished: nothing to go on with
+        proc = run_cli(*args, *shortened.get(args[0], []), cwd=tmp_path)
+        assert proc.returncode == 0, (args, proc.stderr)
+        if args[0] == "plot":
+            assert "runs/beach/plots/gauges.png" in proc.stdout
+    assert json.loads((tmp_path / "runs/beach/summary.json").read_text())["sim_time"] >= 0.5
+    assert (tmp_path / "runs/beach-h5/gauges.csv").is_file()
+    again = run_cli(*commands[0][1:], "--set", "until=0.3", cwd=tmp_path)
+    assert again.returncode == 2 and "--overwrite" in again.stderr
