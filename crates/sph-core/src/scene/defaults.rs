@@ -1,0 +1,199 @@
+//! The default of every optional scene parameter: one [`Defaults`] value, the project's only
+//! defaults. Python reads it (`watersim._core.scene_defaults()`) instead of keeping its own.
+
+use serde::Serialize;
+
+use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Viscosity};
+use crate::kernel::KernelKind;
+use crate::math::Real;
+
+/// Every default, laid out as the scene's keys: `viscosity.nu` is the default of the `nu` key
+/// of the `viscosity` table. A table whose option is off by default (`shifting`, `damping`)
+/// holds the defaults of its parameters for when it is on; a table with several models holds
+/// the default model and the parameters of every model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Defaults {
+    /// Magnitude of gravity [m/s^2].
+    pub gravity: Real,
+    /// Reference density of water [kg/m^3].
+    pub rho0: Real,
+    /// Wendland C2, DualSPHysics' default; free of the cubic spline's pairing instability.
+    pub kernel: KernelKind,
+    /// `h = coefh sqrt(dim) dp`; DualSPHysics' cases use 0.75-2.
+    pub coefh: Real,
+    /// `c0 = coefsound sqrt(g h_swl)`: density varies by about 0.25 % in a hydrostatic column.
+    pub coefsound: Real,
+    /// Tait exponent of water (Monaghan 1994).
+    pub gamma: Real,
+    /// DualSPHysics' Courant number for the Monaghan & Kos (1999) time step.
+    pub cfl: Real,
+    pub viscosity: ViscosityDefaults,
+    pub diffusion: DiffusionDefaults,
+    pub integrator: IntegratorDefaults,
+    pub boundary: Boundary,
+    pub force_precision: ForcePrecision,
+    pub shifting: ShiftingDefaults,
+    pub damping: DampingDefaults,
+    /// Stability monitors (docs/stability.md): loose enough that a healthy run never trips
+    /// them, tight enough to stop a diverging one within a few steps.
+    pub density_band: Real,
+    pub lost_fraction_limit: Real,
+    pub energy_growth_limit: Real,
+}
+
+/// The default viscosity model and the parameters of each model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ViscosityDefaults {
+    /// A `model` tag of [`Viscosity`].
+    pub model: &'static str,
+    /// Monaghan (1992) artificial viscosity, in the 0.01-0.1 range for free-surface flows.
+    pub alpha: Real,
+    /// Kinematic viscosity of water at 20 C [m^2/s].
+    pub nu: Real,
+    /// Smagorinsky constant (Dalrymple & Rogers 2006).
+    pub cs: Real,
+    /// Blin constant (Dalrymple & Rogers 2006).
+    pub ci: Real,
+}
+
+/// The default density diffusion term and its coefficient.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DiffusionDefaults {
+    /// A `model` tag of [`Diffusion`].
+    pub model: &'static str,
+    /// The standard value (Molteni & Colagrossi 2009; Antuono et al. 2010).
+    pub delta: Real,
+}
+
+/// The default time integrator and the Verlet scheme's parameter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct IntegratorDefaults {
+    /// A `scheme` tag of [`Integrator`].
+    pub scheme: &'static str,
+    /// Verlet: one Euler step every this many steps (DualSPHysics' VerletSteps).
+    pub euler_every: u32,
+}
+
+/// Particle shifting's parameters (shifting is off by default).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ShiftingDefaults {
+    /// `A` of `D = A h |u| dt`, DualSPHysics' value (Skillen et al. 2013 propose 1-6).
+    pub coefficient: Real,
+}
+
+/// The damping zone's parameters (no damping zone by default).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DampingDefaults {
+    /// Largest reduction rate [1/s].
+    pub strength: Real,
+}
+
+impl Default for Defaults {
+    fn default() -> Self {
+        Defaults {
+            gravity: 9.81,
+            rho0: 1000.0,
+            kernel: KernelKind::Wendland,
+            coefh: 1.0,
+            coefsound: 20.0,
+            gamma: 7.0,
+            cfl: 0.2,
+            viscosity: ViscosityDefaults { model: "artificial", alpha: 0.01, nu: 1.0e-6, cs: 0.12, ci: 0.0066 },
+            diffusion: DiffusionDefaults { model: "fourtakas", delta: 0.1 },
+            integrator: IntegratorDefaults { scheme: "symplectic", euler_every: 40 },
+            boundary: Boundary::Dbc,
+            force_precision: ForcePrecision::F64,
+            shifting: ShiftingDefaults { coefficient: 2.0 },
+            damping: DampingDefaults { strength: 10.0 },
+            density_band: 0.5,
+            lost_fraction_limit: 0.01,
+            energy_growth_limit: 0.05,
+        }
+    }
+}
+
+impl Defaults {
+    /// The defaults as JSON (nested as the scene's tables).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|e| unreachable!("the defaults always serialise: {e}"))
+    }
+}
+
+/// serde's `default = "path"` takes a function: one per defaulted key, each reading
+/// [`Defaults::default`], so the values live there only. A tagged option's default is its
+/// default model parsed from its tag alone, so that model's parameters take their defaults too.
+pub(crate) mod serde_default {
+    use super::*;
+
+    macro_rules! from_defaults {
+        ($($name:ident: $ty:ty = $($field:ident).+;)*) => {
+            $(pub(crate) fn $name() -> $ty {
+                Defaults::default().$($field).+
+            })*
+        };
+    }
+
+    from_defaults! {
+        gravity: Real = gravity;
+        rho0: Real = rho0;
+        kernel: KernelKind = kernel;
+        coefh: Real = coefh;
+        coefsound: Real = coefsound;
+        gamma: Real = gamma;
+        cfl: Real = cfl;
+        alpha: Real = viscosity.alpha;
+        nu: Real = viscosity.nu;
+        cs: Real = viscosity.cs;
+        ci: Real = viscosity.ci;
+        delta: Real = diffusion.delta;
+        euler_every: u32 = integrator.euler_every;
+        boundary: Boundary = boundary;
+        force_precision: ForcePrecision = force_precision;
+        shifting_coefficient: Real = shifting.coefficient;
+        damping_strength: Real = damping.strength;
+        density_band: Real = density_band;
+        lost_fraction_limit: Real = lost_fraction_limit;
+        energy_growth_limit: Real = energy_growth_limit;
+    }
+
+    /// A tagged option from its tag alone: its parameters take their serde defaults.
+    fn tagged<T: serde::de::DeserializeOwned>(key: &str, tag: &str) -> T {
+        serde_json::from_value(serde_json::json!({ key: tag }))
+            .unwrap_or_else(|e| unreachable!("the default tag {tag:?} names a model with defaulted parameters: {e}"))
+    }
+
+    pub(crate) fn viscosity() -> Viscosity {
+        tagged("model", Defaults::default().viscosity.model)
+    }
+
+    pub(crate) fn diffusion() -> Diffusion {
+        tagged("model", Defaults::default().diffusion.model)
+    }
+
+    pub(crate) fn integrator() -> Integrator {
+        tagged("scheme", Defaults::default().integrator.scheme)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::serde_default::*;
+    use super::*;
+
+    #[test]
+    fn tagged_defaults_are_the_default_models_with_default_parameters() {
+        assert_eq!(viscosity(), Viscosity::Artificial { alpha: 0.01 });
+        assert_eq!(diffusion(), Diffusion::Fourtakas { delta: 0.1 });
+        assert_eq!(integrator(), Integrator::Symplectic);
+    }
+
+    #[test]
+    fn defaults_serialise_as_the_scene_tables() {
+        let v: serde_json::Value = serde_json::from_str(&Defaults::default().to_json()).expect("json");
+        assert_eq!(v["viscosity"]["model"], "artificial");
+        assert_eq!(v["boundary"]["model"], "dbc");
+        assert_eq!(v["kernel"], "wendland");
+        assert_eq!(v["force_precision"], "f64");
+        assert_eq!(v["integrator"]["euler_every"], 40);
+    }
+}

@@ -1,0 +1,121 @@
+//! The numerical options of a scene: viscosity, density diffusion, time integrator, wall model,
+//! force precision and particle shifting. Each option's defaults are in [`super::Defaults`].
+
+use serde::{Deserialize, Serialize};
+
+use super::defaults::serde_default as default;
+use crate::math::Real;
+
+/// Viscosity model (DESIGN.md section 2). One per scene.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Viscosity {
+    /// Monaghan (1992) artificial viscosity with coefficient `alpha`.
+    Artificial {
+        #[serde(default = "default::alpha")]
+        alpha: Real,
+    },
+    /// Lo & Shao (2002) laminar viscosity, kinematic viscosity `nu` [m^2/s].
+    Laminar {
+        #[serde(default = "default::nu")]
+        nu: Real,
+    },
+    /// Laminar viscosity plus the SPS Smagorinsky closure (Dalrymple & Rogers 2006).
+    LaminarSps {
+        #[serde(default = "default::nu")]
+        nu: Real,
+        #[serde(default = "default::cs")]
+        cs: Real,
+        #[serde(default = "default::ci")]
+        ci: Real,
+    },
+}
+
+/// Density diffusion term in the continuity equation.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Diffusion {
+    None,
+    /// Molteni & Colagrossi (2009).
+    Molteni {
+        #[serde(default = "default::delta")]
+        delta: Real,
+    },
+    /// Fourtakas et al. (2019): the hydrostatic part of the density difference is removed,
+    /// taken in pressure (`physics::forces::hydrostatic_free_difference`).
+    Fourtakas {
+        #[serde(default = "default::delta")]
+        delta: Real,
+    },
+}
+
+/// Time integrator (DESIGN.md section 2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "scheme", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Integrator {
+    Symplectic,
+    Verlet {
+        #[serde(default = "default::euler_every")]
+        euler_every: u32,
+    },
+}
+
+/// How wall particles get the density (and so the pressure) that pushes on the fluid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Boundary {
+    /// Dynamic boundary condition (Crespo et al. 2007): wall particles integrate continuity
+    /// from their fluid neighbours (clamped at rho0, as DualSPHysics). Their density remembers
+    /// history: a wall particle that starts dry keeps fluid off by more than a wall that starts
+    /// wet, and one at a moving waterline is pumped up by the clamp (docs/wave-flume.md).
+    Dbc,
+    /// Adami, Hu & Adams (2012, J. Comput. Phys. 231, Eq. 27): at every force evaluation each
+    /// wall particle takes the pressure extrapolated from its fluid neighbours,
+    /// `p_w = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf`, floored at
+    /// 0 (no suction), and the density of that pressure; no memory. `a_w` is the wall's own
+    /// acceleration (the paddle's, from its motion law).
+    Adami,
+}
+
+/// Floating-point type of the fluid force loop's pair arithmetic. The state (positions,
+/// velocities, densities) and the sums over neighbours stay in f64 either way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForcePrecision {
+    /// Every pair term in f64.
+    F64,
+    /// Pair terms in f32, eight to an AVX2 register instead of four, as DualSPHysics forms
+    /// its forces. Neighbour offsets are taken in f64 before rounding, and pressures and
+    /// density differences from `rho/rho0 - 1` formed in f64, so no term loses more than f32's
+    /// relative precision (about 6e-8); docs/benchmarks.md measures the effect.
+    F32,
+}
+
+/// Fickian particle shifting (Lind et al. 2012, J. Comput. Phys. 231, Eqs. 22-23): after each
+/// step a fluid particle moves by `dr = -a_fs D grad C`, with the concentration gradient
+/// `grad C = sum_b V_b grad W_ab` over fluid and wall neighbours and Skillen et al. (2013)'s
+/// coefficient `D = A h |u| dt` (their Eq. 26), so still water is never shifted. Free-surface
+/// particles lack half their neighbours and `grad C` would push them out of the water: the
+/// particle divergence `div r = -sum_b V_b r_ab . grad W_ab` (Lee et al. 2008; `dim` in the
+/// bulk) detects them, and `a_fs` ramps from 0 at `div r = surface_threshold` to 1 at
+/// `div r = dim` (DualSPHysics' free-surface correction, Mokos 2013, with its thresholds 1.5
+/// in 2D and 2.75 in 3D). The shift only moves particles; it does not correct the velocity or
+/// density (as DualSPHysics' Lind shifting).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shifting {
+    /// `A` of `D = A h |u| dt`.
+    #[serde(default = "default::shifting_coefficient")]
+    pub coefficient: Real,
+    /// Particle divergence at and below which a particle is on the free surface and not
+    /// shifted; default 1.5 in 2D, 2.75 in 3D. Must lie between 0 and `dim`.
+    #[serde(default)]
+    pub surface_threshold: Option<Real>,
+}
+
+impl Shifting {
+    /// The free-surface threshold for `dim` (the default when none is given).
+    pub fn threshold(&self, dim: usize) -> Real {
+        self.surface_threshold.unwrap_or(if dim == 2 { 1.5 } else { 2.75 })
+    }
+}

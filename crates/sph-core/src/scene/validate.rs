@@ -1,0 +1,364 @@
+//! Every check of a scene, run before anything is allocated: each refusal names the offending
+//! key's dotted path (`viscosity.alpha`, `fluid[0]`) and the reason.
+
+use super::geometry::BoxSpec;
+use super::numerics::{Diffusion, ForcePrecision, Integrator, Viscosity};
+use super::{Obstacle, Scene};
+use crate::error::{Error, Result};
+use crate::math::Real;
+use crate::motion::PaddleKind;
+
+fn check_positive(field: &str, v: Real) -> Result<()> {
+    if !v.is_finite() {
+        return Err(Error::invalid(field, format!("must be a finite number, got {v}")));
+    }
+    if v <= 0.0 {
+        return Err(Error::invalid(field, format!("must be > 0, got {v}")));
+    }
+    Ok(())
+}
+
+fn check_non_negative(field: &str, v: Real) -> Result<()> {
+    if !v.is_finite() || v < 0.0 {
+        return Err(Error::invalid(field, format!("must be a finite number >= 0, got {v}")));
+    }
+    Ok(())
+}
+
+fn check_vector(field: &str, v: &[Real], dim: usize) -> Result<()> {
+    if v.len() != dim {
+        return Err(Error::invalid(field, format!("must have {dim} components (dim = {dim}), got {}", v.len())));
+    }
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(Error::invalid(field, format!("components must be finite, got {x}")));
+    }
+    Ok(())
+}
+
+fn check_box(field: &str, b: &BoxSpec, dim: usize) -> Result<()> {
+    check_vector(&format!("{field}.min"), &b.min, dim)?;
+    check_vector(&format!("{field}.max"), &b.max, dim)?;
+    for i in 0..dim {
+        if b.max[i] <= b.min[i] {
+            return Err(Error::invalid(
+                field,
+                format!("max[{i}] = {} must be greater than min[{i}] = {}", b.max[i], b.min[i]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Smallest `coefh`: a smaller h reaches no more than the nearest neighbours, and the neighbour
+/// grid (cells of side h) outgrows memory. DualSPHysics' cases use 0.75-2.
+pub const MIN_COEFH: Real = 0.5;
+
+/// Largest `density_band`: the band `rho0 (1 -+ density_band)` then reaches zero density, and a
+/// wider one bounds nothing below.
+pub const MAX_DENSITY_BAND: Real = 1.0;
+
+/// Largest `energy_growth_limit`: an unforced fluid whose mechanical energy grew by its whole
+/// initial potential energy is no solution any more, so a looser monitor would never stop a run
+/// that needs stopping.
+pub const MAX_ENERGY_GROWTH_LIMIT: Real = 1.0;
+
+fn check_obstacle(f: &str, o: &Obstacle, dim: usize) -> Result<()> {
+    match o {
+        Obstacle::Box { min, max } => {
+            check_box(f, &BoxSpec { min: min.clone(), max: max.clone() }, dim)?
+        }
+        Obstacle::Mesh { vertices, triangles } => {
+            if dim != 3 {
+                return Err(Error::invalid(f, "a triangle mesh needs dim = 3"));
+            }
+            if triangles.is_empty() {
+                return Err(Error::invalid(format!("{f}.triangles"), "needs at least one triangle"));
+            }
+            for (j, v) in vertices.iter().enumerate() {
+                check_vector(&format!("{f}.vertices[{j}]"), v, 3)?;
+            }
+            if let Some((j, t)) = triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= vertices.len())) {
+                return Err(Error::invalid(
+                    format!("{f}.triangles[{j}]"),
+                    format!("{t:?} indexes past the {} vertices", vertices.len()),
+                ));
+            }
+        }
+        Obstacle::Profile { x, z } => {
+            if x.len() != z.len() || x.len() < 2 {
+                return Err(Error::invalid(
+                    format!("{f}.z"),
+                    format!("needs as many values as x, at least 2 (x: {}, z: {})", x.len(), z.len()),
+                ));
+            }
+            if let Some(v) = x.iter().chain(z).find(|v| !v.is_finite()) {
+                return Err(Error::invalid(f, format!("values must be finite, got {v}")));
+            }
+            if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+                return Err(Error::invalid(format!("{f}.x"), format!("must increase strictly (x[{i}] >= x[{}])", i + 1)));
+            }
+        }
+        Obstacle::Plane { point, normal } => {
+            check_vector(&format!("{f}.point"), point, dim)?;
+            check_vector(&format!("{f}.normal"), normal, dim)?;
+            let n2: Real = normal.iter().map(|x| x * x).sum();
+            if n2 < 1e-24 {
+                return Err(Error::invalid(format!("{f}.normal"), "must not be the zero vector"));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_at_most(field: &str, v: Real, max: Real, reason: &str) -> Result<()> {
+    if v > max {
+        return Err(Error::invalid(field, format!("must be <= {max} ({reason}), got {v}")));
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Checks every field; the error names the field and the reason.
+    pub fn validate(&self) -> Result<()> {
+        if self.dim != 2 && self.dim != 3 {
+            return Err(Error::invalid("dim", format!("must be 2 or 3, got {}", self.dim)));
+        }
+        self.validate_parameters()?;
+        self.validate_numerics()?;
+        self.validate_geometry()?;
+        self.validate_flume()?;
+        self.validate_memory()?;
+        for k in 0..self.dim {
+            let extent = self.tank.max[k] - self.tank.min[k];
+            if extent < 2.0 * self.dp {
+                return Err(Error::invalid(
+                    "tank",
+                    format!("extent {extent} along axis {k} is smaller than 2 dp = {}", 2.0 * self.dp),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The scalar parameters and the stability monitors' thresholds.
+    fn validate_parameters(&self) -> Result<()> {
+        check_positive("dp", self.dp)?;
+        check_non_negative("gravity", self.gravity)?;
+        check_positive("rho0", self.rho0)?;
+        check_positive("coefh", self.coefh)?;
+        if self.coefh < MIN_COEFH {
+            return Err(Error::invalid(
+                "coefh",
+                format!(
+                    "must be >= {MIN_COEFH} (h = coefh sqrt(dim) dp; a smaller h reaches no more than the nearest neighbours), got {}",
+                    self.coefh
+                ),
+            ));
+        }
+        check_positive("coefsound", self.coefsound)?;
+        check_positive("gamma", self.gamma)?;
+        check_positive("cfl", self.cfl)?;
+        check_at_most("cfl", self.cfl, 1.0, "the Courant number")?;
+        check_positive("density_band", self.density_band)?;
+        check_at_most("density_band", self.density_band, MAX_DENSITY_BAND, "the band rho0 (1 -+ density_band) then reaches zero density")?;
+        check_non_negative("lost_fraction_limit", self.lost_fraction_limit)?;
+        check_at_most("lost_fraction_limit", self.lost_fraction_limit, 1.0, "a fraction of the fluid")?;
+        check_positive("energy_growth_limit", self.energy_growth_limit)?;
+        check_at_most("energy_growth_limit", self.energy_growth_limit, MAX_ENERGY_GROWTH_LIMIT, "a growth by the whole initial potential energy")?;
+        if let Some(d) = self.h_swl {
+            check_positive("h_swl", d)?;
+        }
+        Ok(())
+    }
+
+    /// Viscosity, diffusion, integrator, shifting and wall thickness.
+    fn validate_numerics(&self) -> Result<()> {
+        let dim = self.dim;
+        match self.viscosity {
+            Viscosity::Artificial { alpha } => check_non_negative("viscosity.alpha", alpha)?,
+            Viscosity::Laminar { nu } => check_non_negative("viscosity.nu", nu)?,
+            Viscosity::LaminarSps { nu, cs, ci } => {
+                check_non_negative("viscosity.nu", nu)?;
+                check_non_negative("viscosity.cs", cs)?;
+                check_non_negative("viscosity.ci", ci)?;
+                if self.force_precision == ForcePrecision::F32 {
+                    return Err(Error::invalid(
+                        "force_precision",
+                        "f32 pair terms exist in the batched force loop only; the SPS closure runs the f64 loop, so use f64",
+                    ));
+                }
+            }
+        }
+        match self.diffusion {
+            Diffusion::None => {}
+            Diffusion::Molteni { delta } | Diffusion::Fourtakas { delta } => {
+                check_non_negative("diffusion.delta", delta)?
+            }
+        }
+        if let Integrator::Verlet { euler_every } = self.integrator {
+            if euler_every == 0 {
+                return Err(Error::invalid("integrator.euler_every", "must be >= 1"));
+            }
+        }
+        if let Some(sh) = self.shifting {
+            check_positive("shifting.coefficient", sh.coefficient)?;
+            let t = sh.threshold(dim);
+            if !t.is_finite() || t <= 0.0 || t >= dim as Real {
+                return Err(Error::invalid(
+                    "shifting.surface_threshold",
+                    format!("must lie strictly between 0 and dim = {dim} (the bulk's particle divergence), got {t}"),
+                ));
+            }
+        }
+        if let Some(0) = self.boundary_layers {
+            return Err(Error::invalid("boundary_layers", "must be >= 1"));
+        }
+        Ok(())
+    }
+
+    /// The tank, the obstacles and the fluid boxes.
+    fn validate_geometry(&self) -> Result<()> {
+        let dim = self.dim;
+        check_box("tank", &self.tank, dim)?;
+        for (i, o) in self.obstacles.iter().enumerate() {
+            check_obstacle(&format!("obstacles[{i}]"), o, dim)?;
+        }
+        if self.fluid.is_empty() {
+            return Err(Error::invalid("fluid", "at least one fluid box is needed"));
+        }
+        let tol = 1e-9 * self.dp;
+        for (i, b) in self.fluid.iter().enumerate() {
+            let f = format!("fluid[{i}]");
+            check_box(&f, b, dim)?;
+            for k in 0..dim {
+                let upper_ok = k == dim - 1 || b.max[k] <= self.tank.max[k] + tol;
+                if b.min[k] < self.tank.min[k] - tol || !upper_ok || b.max[k] > self.tank.max[k] + tol {
+                    return Err(Error::invalid(
+                        f,
+                        format!(
+                            "fluid box [{:?}, {:?}] does not fit in the tank [{:?}, {:?}] (axis {k})",
+                            b.min, b.max, self.tank.min, self.tank.max
+                        ),
+                    ));
+                }
+            }
+            for k in 0..dim {
+                if b.max[k] - b.min[k] < self.dp {
+                    return Err(Error::invalid(
+                        f,
+                        format!("extent {} along axis {k} is smaller than dp = {}", b.max[k] - b.min[k], self.dp),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses a resolution whose arrays would not fit in memory (an estimate: about
+    /// `48 dim + 100` bytes per particle, see docs/physics-options.md).
+    fn validate_memory(&self) -> Result<()> {
+        let limit = self.memory_limit_bytes.or_else(available_memory_bytes).map_or(f64::INFINITY, |b| b as f64);
+        let particles = self.estimated_particles();
+        // cell starts of three groups plus the sort cursor, 16 bytes per cell of the grid
+        let cells = self.estimated_cells();
+        let particle_bytes = particles * (48.0 * self.dim as f64 + 100.0);
+        let bytes = particle_bytes + 16.0 * cells;
+        if !(bytes <= limit) {
+            // a grid larger than the particles means h is tiny for the tank: blame coefh
+            let (field, fix) = if 16.0 * cells > particle_bytes { ("coefh", "increase coefh") } else { ("dp", "use a larger dp") };
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "dp = {} and h = {:e} m need about {:.3e} particles and {:.3e} grid cells, {:.2} GiB, more than the {:.2} GiB allowed; {fix}",
+                    self.dp,
+                    self.h(),
+                    particles,
+                    cells,
+                    bytes / 1024f64.powi(3),
+                    limit / 1024f64.powi(3)
+                ),
+            ));
+        }
+        if !(cells < u32::MAX as f64) {
+            return Err(Error::invalid(
+                "coefh",
+                format!("h = {:e} m makes a neighbour grid of {cells:.3e} cells (the limit is {:e}); increase coefh or dp", self.h(), u32::MAX as f64),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Paddle, damping zone and gauges.
+    fn validate_flume(&self) -> Result<()> {
+        let dim = self.dim;
+        let up = dim - 1;
+        let tol = 1e-9 * self.dp;
+        if let Some(p) = &self.paddle {
+            if !p.x.is_finite() {
+                return Err(Error::invalid("paddle.x", format!("must be finite, got {}", p.x)));
+            }
+            p.law.validate("paddle.law")?;
+            let back = p.x - self.layers() as Real * self.dp - p.law.max_backward_excursion();
+            if back < self.tank.min[0] - tol || p.x >= self.tank.max[0] {
+                return Err(Error::invalid(
+                    "paddle.x",
+                    format!(
+                        "the paddle at x = {} ({} layers of dp thick, moving back by up to {:.4} m) must lie inside the tank [{}, {}]",
+                        p.x,
+                        self.layers(),
+                        p.law.max_backward_excursion(),
+                        self.tank.min[0],
+                        self.tank.max[0]
+                    ),
+                ));
+            }
+            for (i, b) in self.fluid.iter().enumerate() {
+                if b.min[0] < p.x - tol {
+                    return Err(Error::invalid(
+                        format!("fluid[{i}]"),
+                        format!("starts at x = {} behind the paddle face x = {}", b.min[0], p.x),
+                    ));
+                }
+            }
+            if let Some(z) = p.hinge_z {
+                if !z.is_finite() || z < self.tank.min[up] || z >= self.tank.max[up] {
+                    return Err(Error::invalid("paddle.hinge_z", format!("must lie within the tank height, got {z}")));
+                }
+            }
+            if let Some(z) = p.swl_z {
+                if !z.is_finite() || z <= p.hinge_z.unwrap_or(self.tank.min[up]) {
+                    return Err(Error::invalid("paddle.swl_z", format!("must be above the hinge, got {z}")));
+                }
+            }
+            if p.kind == PaddleKind::Piston && p.hinge_z.is_some() {
+                return Err(Error::invalid("paddle.hinge_z", "only a flap has a hinge"));
+            }
+        }
+        if let Some(d) = &self.damping {
+            if !d.x_start.is_finite() || !d.x_end.is_finite() || d.x_end <= d.x_start {
+                return Err(Error::invalid(
+                    "damping",
+                    format!("x_end ({}) must be finite and greater than x_start ({})", d.x_end, d.x_start),
+                ));
+            }
+            check_non_negative("damping.strength", d.strength)?;
+        }
+        let mut names = std::collections::HashSet::new();
+        for (i, g) in self.gauges.iter().enumerate() {
+            let f = format!("gauges[{i}]");
+            g.validate(&f, dim, &self.tank.min, &self.tank.max)?;
+            if !names.insert(g.name().to_string()) {
+                return Err(Error::invalid(format!("{f}.name"), format!("duplicate gauge name {:?}", g.name())));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// 80 % of `MemAvailable` from /proc/meminfo, if readable.
+fn available_memory_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024 / 10 * 8)
+}
