@@ -73,3 +73,36 @@ def test_irregular_target_has_every_component() -> None:
 def test_a_tabulated_motion_has_no_target() -> None:
     law = _scene(ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.01)), ws.Piston()).law
     assert law.absorption_target is None and law.absorption_gain is None
+
+
+SOLITARY_DEPTH = 0.2
+LENGTH = 2.0
+
+
+def _solitary_in_a_closed_flume(absorption: bool) -> tuple[ws.FlumeSimulation, float]:
+    """A solitary wave (H/d = 0.2) sent toward the vertical far wall of a 2 m flume, run until
+    the reflected wave has come back to the paddle and a second crossing's time has passed."""
+    flume = ws.Flume(length=LENGTH, depth=SOLITARY_DEPTH, damping=False)
+    wave = ws.SolitaryWave(height=0.04)
+    scene = flume.scene(wave, paddle=ws.Piston(absorption=absorption), dp=0.025, coefsound=10.0,
+                        gauges=[ws.ElevationGauge(0.3, name="near"),
+                                ws.ElevationGauge(0.5 * LENGTH, name="middle")],
+                        sample_interval=0.02)
+    c = float(wt.solitary_celerity(0.04, SOLITARY_DEPTH))
+    back = scene.law.duration + 2.0 * LENGTH / c  # the wave is back at the paddle
+    sim = scene.build()
+    sim.run(back + LENGTH / c)
+    return sim, back
+
+
+@pytest.mark.slow
+def test_an_absorbing_piston_lets_a_reflected_solitary_wave_out() -> None:
+    residual = {}
+    for absorbing in (False, True):
+        sim, back = _solitary_in_a_closed_flume(absorbing)
+        t, eta = sim.gauges.t, sim.gauges.elevation
+        late = t > back + 0.3
+        # the tank after the return: the largest elevation anywhere the gauges see
+        residual[absorbing] = float(np.nanmax(np.abs(eta[late])))
+    assert residual[False] > 0.6 * 0.04  # re-reflected by a fixed paddle
+    assert residual[True] < 0.25 * residual[False], residual

@@ -55,6 +55,9 @@ def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | 
         data[key] = np.asarray(state[key])
     data["energy0"] = np.asarray(state["energy0"], dtype=np.float64)
     data["scene_json"] = np.asarray(json.dumps(dict(scene)))
+    correction = state.get("paddle_correction")
+    if correction is not None:
+        data["paddle_correction"] = np.asarray(correction, dtype=np.float64)
     data["n_gauges"] = np.asarray(len(state["gauges"]))
     for i, gauge in enumerate(state["gauges"]):
         data[f"gauge{i}_t"] = gauge["t"]
@@ -113,6 +116,8 @@ def load_checkpoint(path: str | Path, sim: Simulation | None = None) -> Simulati
         state["dt"] = float(f["dt"])
         state["n_excluded"] = int(f["n_excluded"])
         state["energy0"] = tuple(float(v) for v in f["energy0"])
+        if "paddle_correction" in f:
+            state["paddle_correction"] = tuple(float(v) for v in f["paddle_correction"])
         state["gauges"] = [
             {
                 "t": np.asarray(f[f"gauge{i}_t"]),

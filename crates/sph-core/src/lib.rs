@@ -5,6 +5,7 @@
 //! section 5): terms a scene does not enable cost no arithmetic in the hot loop and no memory.
 //! The solver is driven through the object-safe [`Simulation`] trait.
 
+pub mod absorption;
 pub mod error;
 pub mod geometry;
 pub mod kernel;

@@ -7,6 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::absorption::Absorption;
 use crate::error::{Error, Result};
 use crate::math::Real;
 
@@ -162,6 +163,9 @@ pub struct Paddle {
     #[serde(default)]
     pub swl_z: Option<Real>,
     pub law: MotionLaw,
+    /// Active wave absorption (see [`crate::absorption`]); none when left out.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub absorption: Option<Absorption>,
 }
 
 /// Rigid motion of the paddle at one instant, applied to reference positions.
@@ -178,6 +182,18 @@ impl Paddle {
     /// Pose at time `t`; `swl_z` and `hinge_z` resolved by the solver.
     pub fn pose(&self, t: Real, hinge_z: Real, swl_z: Real) -> PaddlePose {
         let (x, v) = self.law.eval(t);
+        self.pose_at(x, v, hinge_z, swl_z)
+    }
+
+    /// Pose at time `t` with the displacement `dx` [m] and rate `du` [m/s] at the still-water
+    /// level added to the law's (active absorption's correction).
+    pub fn pose_displaced(&self, t: Real, hinge_z: Real, swl_z: Real, dx: Real, du: Real) -> PaddlePose {
+        let (x, v) = self.law.eval(t);
+        self.pose_at(x + dx, v + du, hinge_z, swl_z)
+    }
+
+    /// Pose with the displacement `x` [m] and its rate `v` [m/s] at the still-water level.
+    fn pose_at(&self, x: Real, v: Real, hinge_z: Real, swl_z: Real) -> PaddlePose {
         match self.kind {
             PaddleKind::Piston => PaddlePose::Piston { dx: x, u: v },
             PaddleKind::Flap => {
@@ -249,6 +265,7 @@ mod tests {
             hinge_z: None,
             swl_z: None,
             law: MotionLaw::Table { t: vec![0.0, 1.0], x: vec![0.0, 0.1] },
+            absorption: None,
         };
         let pose = p.pose(1.0, 0.0, 0.5);
         let (pos, _) = pose.apply(1.0, 0.5);

@@ -14,6 +14,7 @@ use crate::geometry;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::absorption::AbsorberState;
 use crate::motion::PaddlePose;
 use crate::phases::{self, Phase};
 use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
@@ -108,6 +109,8 @@ pub struct Checkpoint {
     pub n_excluded: usize,
     pub energy0: (Real, Real),
     pub gauges: Vec<GaugeRecord>,
+    /// Active absorption's correction `(offset, rate, since)`; None without absorption.
+    pub paddle_correction: Option<(Real, Real, Real)>,
 }
 
 /// The object-safe face of a solver, whatever its compile-time options.
@@ -217,6 +220,8 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     paddle_levels: (Real, Real),
     /// Time of the paddle's current pose (the last `move_boundaries`).
     paddle_time: Real,
+    /// Active absorption's correction of the paddle's displacement; None without absorption.
+    absorber: Option<AbsorberState>,
     /// Accelerations of the paddle particles in storage order (Adami walls with a paddle only).
     moving_acc: Vec<D::V>,
     gauges: Vec<GaugeRecord>,
@@ -322,6 +327,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             moving_ref: moving,
             paddle_levels: (0.0, 0.0),
             paddle_time: 0.0,
+            absorber: None,
             moving_acc: Vec::new(),
             gauges: Vec::new(),
             domain: (lo, hi),
@@ -333,6 +339,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
             let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
             solver.paddle_levels = (hinge, swl);
+            if paddle.absorption.is_some() {
+                solver.absorber = Some(AbsorberState::default());
+            }
             if solver.scene.boundary == Boundary::Adami {
                 solver.moving_acc = vec![D::V::ZERO; solver.p.n_moving];
             }
@@ -358,7 +367,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn move_boundaries(&mut self, t: Real) {
         let Some(paddle) = &self.scene.paddle else { return };
         let (hinge, swl) = self.paddle_levels;
-        let pose: PaddlePose = paddle.pose(t, hinge, swl);
+        let pose: PaddlePose = match self.absorber {
+            Some(state) => paddle.pose_displaced(t, hinge, swl, state.offset_at(t), state.rate),
+            None => paddle.pose(t, hinge, swl),
+        };
         self.paddle_time = t;
         let range = self.p.n_fixed..self.p.fluid_start();
         let up = D::DIM - 1;
@@ -848,8 +860,32 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.instability(kind, Some(slot), message)
     }
 
+    /// Active absorption: the paddle's correction for the step starting now, from the surface
+    /// elevation in front of the paddle (see [`crate::absorption`]). Evaluated on the state at
+    /// the step's start, before the paddle moves in it.
+    fn absorb(&mut self) {
+        let (Some(state), Some(paddle)) = (self.absorber, &self.scene.paddle) else { return };
+        let Some(absorption) = &paddle.absorption else { return };
+        let up = D::DIM - 1;
+        let (tank, t) = (&self.scene.tank, self.time);
+        // the vertical through the face at the still-water level plus the offset, mid-width
+        let face = paddle.x + paddle.law.eval(t).0 + state.offset_at(t);
+        let mut foot = D::V::ZERO;
+        for k in 0..D::DIM {
+            foot.set(k, 0.5 * (tank.min[k] + tank.max[k]));
+        }
+        foot.set(0, face + absorption.probe_offset);
+        foot.set(up, tank.min[up]);
+        let mut top = foot;
+        top.set(up, tank.max[up]);
+        let surface = self.last_wet_along(foot, top);
+        let eta = surface.is_finite().then(|| surface - self.paddle_levels.1);
+        self.absorber = Some(absorption.advance(state, t, eta));
+    }
+
     /// One time step.
     fn step_once(&mut self) -> Result<()> {
+        self.absorb();
         let (dt, rule) = match self.history {
             History::Symplectic { .. } => {
                 let lim = self.compute_forces();
@@ -1091,6 +1127,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             n_excluded: self.n_excluded,
             energy0: self.energy0,
             gauges: self.gauges.clone(),
+            paddle_correction: self.absorber.map(|a| (a.offset, a.rate, a.since)),
         }
     }
     fn restore(&mut self, c: &Checkpoint) -> Result<()> {
@@ -1112,6 +1149,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         expect("ids", c.ids.len(), n)?;
         expect("kinds", c.kinds.len(), n)?;
         expect("gauges", c.gauges.len(), self.gauges.len())?;
+        match (self.absorber.is_some(), c.paddle_correction.is_some()) {
+            (true, false) => return Err(Error::invalid("checkpoint.paddle_correction", "missing: this scene's paddle absorbs waves")),
+            (false, true) => {
+                return Err(Error::invalid("checkpoint.paddle_correction", "this scene's paddle does not absorb waves: the checkpoint is from another scene"));
+            }
+            _ => {}
+        }
         // ids must be a permutation that keeps every particle in its group
         let fs = self.p.fluid_start() as u32;
         let nf = self.p.n_fixed as u32;
@@ -1140,6 +1184,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         self.n_excluded = c.n_excluded;
         self.energy0 = c.energy0;
         self.gauges = c.gauges.clone();
+        if let (Some(state), Some((offset, rate, since))) = (&mut self.absorber, c.paddle_correction) {
+            *state = AbsorberState { offset, rate, since };
+        }
         // The saved order is already sorted: the stable sort keeps it and rebuilds the cells.
         self.sort_group(GROUP_FIXED);
         self.grid.forget_slot_cells(GROUP_FIXED);

@@ -291,6 +291,7 @@ impl Simulation {
             gauges.append(gd)?;
         }
         d.set_item("gauges", gauges)?;
+        d.set_item("paddle_correction", c.paddle_correction)?;
         Ok(d)
     }
 
@@ -326,6 +327,10 @@ impl Simulation {
             rec.values = item(gd, "values")?;
             rec.next_time = item(gd, "next_time")?;
         }
+        c.paddle_correction = match checkpoint.get_item("paddle_correction")? {
+            Some(v) if !v.is_none() => Some(item(checkpoint, "paddle_correction")?),
+            _ => None,
+        };
         self.inner.restore(&c).map_err(|e| to_py_err(py, e))
     }
 

@@ -40,6 +40,11 @@ class PaddleLaw:
     """Time constant of the absorption's drift correction [s]: ten (peak) periods."""
 
 
+def _optional_bool(field: str, value: object) -> None:
+    if value is not None and not isinstance(value, bool):
+        raise SceneError(f"{field}: expected true, false or nothing, got {value!r}")
+
+
 class _Paddle:
     """What every wave-maker tells the scene (each class overrides what differs)."""
 
@@ -90,9 +95,36 @@ class _Paddle:
             **extra,
         )
 
-    def to_core(self, law: PaddleLaw, depth: float) -> dict[str, Any]:
-        """The core's paddle JSON driven by ``law`` in water ``depth`` [m] deep."""
-        return {"kind": self.kind, "x": 0.0, "hinge_z": None, "swl_z": None, "law": law.law}
+    absorption: bool | None
+
+    def absorbs(self, law: PaddleLaw, beach: bool) -> bool:
+        """Whether this paddle absorbs the waves coming back (:attr:`absorption`; by default
+        when the flume has a ``beach``, which reflects part of every wave, and the wave has a
+        target to absorb against).
+
+        Raises:
+            SceneError: absorption asked for a wave without a target (a tabulated motion).
+        """
+        if self.absorption is None:
+            return beach and law.absorption_target is not None
+        if self.absorption and law.absorption_target is None:
+            raise SceneError("paddle.absorption: this wave (a tabulated motion) has no target "
+                             "elevation to absorb against; set paddle.absorption = false")
+        return bool(self.absorption)
+
+    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None
+                ) -> dict[str, Any]:
+        """The core's paddle JSON driven by ``law`` in water ``depth`` [m] deep; with a
+        ``probe_offset`` [m], absorbing the waves coming back (the surface read that far in
+        front of the face; :mod:`watersim`'s core, ``absorption.rs``)."""
+        paddle: dict[str, Any] = {"kind": self.kind, "x": 0.0, "hinge_z": None, "swl_z": None,
+                                  "law": law.law}
+        if probe_offset is not None:
+            paddle["absorption"] = {"target": law.absorption_target,
+                                    "gain": law.absorption_gain,
+                                    "probe_offset": probe_offset,
+                                    "drift_time": law.absorption_drift_time}
+        return paddle
 
 
 @dataclass(frozen=True)
@@ -104,16 +136,22 @@ class Piston(_Paddle):
         ramp_periods: start-up ramp length in wave periods (peak periods for irregular waves);
             0 for none. Tabulated and solitary motions have no ramp.
         ramp: ``"linear"`` (``min(1, t / T_r)``) or ``"tanh"`` (``tanh(4 t / T_r)``).
+        absorption: active wave absorption (Schaffer & Klopman 2000): the paddle also moves with
+            the water of the waves coming back from the flume, measured in front of it, so
+            that they leave instead of being reflected again; ``None`` (default): on when the
+            flume has a beach, ``False``: off.
     """
 
     order: int = 1
     ramp_periods: float = 2.0
     ramp: str = "linear"
+    absorption: bool | None = None
 
     kind: ClassVar[wt.Paddle] = "piston"
     TAG: ClassVar[str] = kind
 
     def __post_init__(self) -> None:
+        _optional_bool("paddle.absorption", self.absorption)
         if isinstance(self.order, bool) or self.order not in (1, 2):
             raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
@@ -130,17 +168,20 @@ class Flap(_Paddle):
         hinge_z: hinge height above the floor [m]; ``None``: on the floor (a bottom-hinged flap).
         ramp_periods: start-up ramp length in wave periods; 0 for none.
         ramp: ``"linear"`` or ``"tanh"``.
+        absorption: active wave absorption, as :class:`Piston`'s.
     """
 
     hinge_z: float | None = None
     ramp_periods: float = 2.0
     ramp: str = "linear"
+    absorption: bool | None = None
 
     order: ClassVar[int] = 1
     kind: ClassVar[wt.Paddle] = "flap"
     TAG: ClassVar[str] = kind
 
     def __post_init__(self) -> None:
+        _optional_bool("paddle.absorption", self.absorption)
         if self.hinge_z is not None:
             _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
@@ -167,8 +208,10 @@ class Flap(_Paddle):
         # the plate's top swings further than the still-water level
         return backward * ((top - self.hinge) / (depth - self.hinge))
 
-    def to_core(self, law: PaddleLaw, depth: float) -> dict[str, Any]:
-        return {**super().to_core(law, depth), "hinge_z": float(self.hinge), "swl_z": float(depth)}
+    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None
+                ) -> dict[str, Any]:
+        return {**super().to_core(law, depth, probe_offset), "hinge_z": float(self.hinge),
+                "swl_z": float(depth)}
 
 
 Paddle = Piston | Flap

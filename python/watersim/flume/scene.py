@@ -470,11 +470,29 @@ class FlumeScene(SceneBuilder):
 
     @functools.cached_property
     def law(self) -> PaddleLaw:
-        """The paddle law (the core's JSON) and its extent."""
+        """The paddle law (the core's JSON) and its extent. An absorbing paddle also moves with
+        the waves coming back: its room either way grows by what absorbing the wave fully
+        reflected by a far wall takes, the law's largest excursion (a harmonic law's
+        ``2 sqrt(sum a_i^2)``, four standard deviations of an irregular signal, below the sum of
+        its amplitudes that bounds the law itself)."""
         # an absurd wave overflows the theory's formulas: the non-finite excursion that results
         # is refused, naming the wave, by _validate_geometry
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            return self.wave.law(self.paddle, self.flume.depth, self.gravity)
+            law = self.wave.law(self.paddle, self.flume.depth, self.gravity)
+        if not self.paddle.absorbs(law, self.flume.beach is not None):
+            return law
+        extra = max(law.forward, law.backward)
+        if law.law["type"] == "harmonic":
+            amplitudes = np.asarray([c[0] for c in law.law["components"]])
+            extra = min(extra, 2.0 * float(np.sqrt(np.sum(amplitudes**2))))
+        return dataclasses.replace(law, forward=law.forward + extra,
+                                   backward=law.backward + extra)
+
+    @property
+    def absorbs(self) -> bool:
+        """Whether the paddle absorbs the waves coming back (``paddle.absorption``)."""
+        return self.law.absorption_target is not None and self.paddle.absorbs(
+            self.law, self.flume.beach is not None)
 
     @property
     def back_x(self) -> float:
@@ -631,7 +649,9 @@ class FlumeScene(SceneBuilder):
         obstacles: list[dict[str, Any]] = []
         if flume.beach is not None:
             obstacles.append(flume.beach.to_core(self.bed_profile))
-        paddle = self.paddle.to_core(self.law, flume.depth)
+        # the surface read two dp in front of the face: clear of the paddle's own particles
+        probe = 2.0 * float(self.dp) if self.absorbs else None  # type: ignore[arg-type]
+        paddle = self.paddle.to_core(self.law, flume.depth, probe)
         scene: dict[str, Any] = {
             "tank": tank,
             "obstacles": obstacles,
@@ -661,6 +681,7 @@ class FlumeScene(SceneBuilder):
             "ramp_duration": law.ramp_duration,
             "stroke": law.stroke,
             "second_order_amplitude": law.second_order_amplitude,
+            "absorption": self.absorbs,
         }
         info.update(self.wave.describe(self))
         return info

@@ -1,0 +1,171 @@
+//! Active wave absorption at the paddle (AWAS): the paddle's displacement gets a correction that
+//! moves it with the water of the waves coming back from the flume, so that they leave through
+//! the paddle instead of being reflected into the flume again.
+//!
+//! Schaffer & Klopman (2000, J. Waterway Port Coastal Ocean Eng. 126(2)), as DualSPHysics'
+//! AWAS (Altomare et al. 2017, Coastal Eng. 127, eqs. 8-10), which corrects pistons only; the
+//! correction is written here for the displacement `X` at the still-water level, so that it
+//! serves a flap as well. The surface elevation measured in front of the paddle, `eta_M`, is
+//! the target elevation `eta_T` of the generated wave plus the elevation `eta_R` of the waves
+//! arriving from the flume. A wave of elevation `eta_R` travelling toward the paddle carries the
+//! water at the velocity the paddle must have to let it through: in linear theory the paddle's
+//! displacement rate and the elevation it makes are in phase, with the ratio `omega / (H/S)`
+//! (the paddle's transfer function `H/S`, Biesel & Suquet 1951), `sqrt(g/d)` in shallow water
+//! for a piston. The correction rate is
+//!
+//! `dX_c/dt = -G (eta_M - eta_T) - X_c / tau`
+//!
+//! with `G` that ratio at the wave's (peak) frequency (the caller's wave theory computes it) and
+//! the drift term (time constant `tau`, several wave periods) pulling the correction's mean back
+//! to zero, so that the paddle keeps its stroke centred (the drift correction of Altomare et
+//! al. 2017, section 2.3).
+//!
+//! The solver evaluates it once per step before moving the paddle: `eta_M` from the fluid at
+//! the start of the step, the rate held over the step.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::math::Real;
+use crate::motion::MotionLaw;
+
+/// What the absorption needs from a scene, part of the paddle's spec (`paddle.absorption`),
+/// checked as it is read.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, try_from = "Fields")]
+pub struct Absorption {
+    /// Target surface elevation at the paddle `eta_T(t)` [m above the still water]: the wave
+    /// the paddle's law generates, as linear theory gives it at the paddle (a harmonic signal or
+    /// a table, in the forms of the motion law).
+    pub target: MotionLaw,
+    /// `G`: the paddle's displacement rate at the still-water level per metre of elevation
+    /// [1/s] (`omega / (H/S)` of the paddle at the wave's frequency).
+    pub gain: Real,
+    /// Where `eta_M` is measured: this far in front of the paddle's face at the still-water
+    /// level [m] (far enough to read the water, not the paddle's own particles).
+    pub probe_offset: Real,
+    /// Time constant `tau` of the drift correction [s].
+    pub drift_time: Real,
+}
+
+/// The correction's state: displacement `X_c` [m] and its rate [m/s] over the current step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AbsorberState {
+    /// `X_c` at `since` [m].
+    pub offset: Real,
+    /// `dX_c/dt` held since `since` [m/s].
+    pub rate: Real,
+    /// Start of the current step [s].
+    pub since: Real,
+}
+
+/// The fields as read, before [`Absorption::validate`].
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fields {
+    target: MotionLaw,
+    gain: Real,
+    probe_offset: Real,
+    drift_time: Real,
+}
+
+impl TryFrom<Fields> for Absorption {
+    type Error = Error;
+    fn try_from(f: Fields) -> Result<Self> {
+        let a = Absorption { target: f.target, gain: f.gain, probe_offset: f.probe_offset, drift_time: f.drift_time };
+        a.validate("").map(|()| a)
+    }
+}
+
+impl Absorption {
+    /// Refuses a non-positive or non-finite parameter or a bad target law, naming the field
+    /// under `field` (empty: the field alone, for the path serde adds).
+    pub fn validate(&self, field: &str) -> Result<()> {
+        let under = |name: &str| if field.is_empty() { name.to_string() } else { format!("{field}.{name}") };
+        self.target.validate(&under("target"))?;
+        for (name, value) in [("gain", self.gain), ("probe_offset", self.probe_offset), ("drift_time", self.drift_time)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::invalid(under(name), format!("must be a positive number, got {value}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The state for the step starting at `t`: `eta_measured` [m above the still water] the
+    /// elevation read in front of the paddle now (None: no water found, no correction from it).
+    pub fn advance(&self, state: AbsorberState, t: Real, eta_measured: Option<Real>) -> AbsorberState {
+        let offset = state.offset_at(t);
+        let reflected = eta_measured.map_or(0.0, |eta| eta - self.target.eval(t).0);
+        AbsorberState { offset, rate: -self.gain * reflected - offset / self.drift_time, since: t }
+    }
+}
+
+impl AbsorberState {
+    /// `X_c` at time `t` within the current step [m].
+    #[inline]
+    pub fn offset_at(&self, t: Real) -> Real {
+        self.offset + self.rate * (t - self.since)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn absorption() -> Absorption {
+        Absorption {
+            target: MotionLaw::Harmonic { components: vec![[0.02, 2.0, 0.0]], ramp_duration: 0.0, ramp_shape: Default::default() },
+            gain: 3.0,
+            probe_offset: 0.05,
+            drift_time: 10.0,
+        }
+    }
+
+    #[test]
+    fn no_reflected_wave_no_correction() {
+        let a = absorption();
+        let t = 0.7;
+        let s = a.advance(AbsorberState::default(), t, Some(a.target.eval(t).0));
+        assert_eq!(s.rate, 0.0);
+        assert_eq!(s.offset_at(t + 0.01), 0.0);
+    }
+
+    #[test]
+    fn the_paddle_moves_with_the_water_of_a_reflected_wave() {
+        let a = absorption();
+        let t = 1.3;
+        // a crest coming back: the paddle retreats (the water under a crest travelling toward
+        // -x moves toward -x) at G times its elevation
+        let s = a.advance(AbsorberState::default(), t, Some(a.target.eval(t).0 + 0.01));
+        assert!((s.rate + 0.03).abs() < 1e-15);
+        assert!((s.offset_at(t + 0.1) + 0.003).abs() < 1e-15);
+        // dry probe: only the drift term
+        let s2 = a.advance(s, t + 0.1, None);
+        assert!((s2.rate - 0.003 / 10.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn drift_correction_returns_the_offset_to_zero() {
+        let a = absorption();
+        let mut s = AbsorberState { offset: 0.05, rate: 0.0, since: 0.0 };
+        let dt = 0.01;
+        for i in 0..3000 {
+            let t = i as Real * dt;
+            s = a.advance(s, t, Some(a.target.eval(t).0));
+        }
+        // 30 s = 3 tau: e^-3 of the initial offset
+        let left = s.offset_at(30.0) / 0.05;
+        assert!((left - (-3.0f64).exp()).abs() < 0.01, "{left}");
+    }
+
+    #[test]
+    fn bad_parameters_name_the_field() {
+        let mut a = absorption();
+        a.gain = 0.0;
+        let e = a.validate("paddle.absorption").unwrap_err().to_string();
+        assert!(e.contains("paddle.absorption.gain"), "{e}");
+        let mut a = absorption();
+        a.drift_time = Real::NAN;
+        assert!(a.validate("paddle.absorption").unwrap_err().to_string().contains("drift_time"));
+    }
+}
