@@ -17,7 +17,7 @@
 //! where they exist. Both variants do the same operations in the same order (Rust never fuses
 //! a multiply and an add on its own), so they give the same bits.
 
-use super::eos::{pressure, sound_speed};
+use super::eos::{pressure, seventh_power, sound_speed, TaitPair};
 use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
@@ -177,9 +177,9 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     // the constants in F formed once per batch.
     let (zero, one) = (F::of(0.0), F::of(1.0));
     let support2 = F::of(c.support * c.support);
-    let (inv_rho0, b_tait, c0, eta2, h) = (F::of(c.inv_rho0), F::of(c.b_tait), F::of(c.c0), F::of(c.eta2), F::of(c.h));
+    let tait = TaitPair::<F>::new(c);
+    let (eta2, h) = (F::of(c.eta2), F::of(c.h));
     let (alpha, lam_coef, rho0) = (F::of(c.alpha), F::of(4.0 * c.nu), F::of(c.rho0));
-    let (seven, twenty_one, thirty_five) = (F::of(7.0), F::of(21.0), F::of(35.0));
     let three = D::DIM == 3;
     for k in 0..n_pad {
         let (rx, ry, rz, r2) = if F::SINGLE {
@@ -193,21 +193,11 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
         let mask = if at_zero { zero } else { one };
         let r2 = if at_zero { support2 } else { r2 };
         let rhob = s.rhob[k];
-        // Tait with gamma = 7 (eos.rs)
         let (pb, cb) = if T7 {
             if F::SINGLE {
-                // (1 + e)^7 - 1 by Horner in e = rho_b/rho0 - 1 (binomial coefficients): no
-                // cancellation near rho0, so the pressure keeps f32's relative precision
-                let e = s.relb[k];
-                let x = one + e;
-                let x3 = x * x * x;
-                let poly = e * (seven + e * (twenty_one + e * (thirty_five + e * (thirty_five + e * (twenty_one + e * (seven + e))))));
-                (b_tait * poly, c0 * x3)
+                tait.seventh_of_relative(s.relb[k])
             } else {
-                // x = rho_b / rho0 taken as rho_b * (1 / rho0)
-                let x = rhob * inv_rho0;
-                let x3 = x * x * x;
-                (b_tait * (x3 * x3 * x - one), c0 * x3)
+                tait.seventh_of_density(rhob)
             }
         } else {
             (s.pb[k], s.cb[k])
@@ -512,7 +502,7 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
 ) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
     assert!(!avx2 || uses_avx2(), "the AVX2 variant needs a CPU with AVX2");
-    match (c.pair_f32, c.gamma == 7.0) {
+    match (c.pair_f32, seventh_power(c)) {
         (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
         (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),
         (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),

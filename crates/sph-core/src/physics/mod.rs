@@ -94,7 +94,7 @@ impl Constants {
         // A tank without gravity has no hydrostatic scale: fall back to coefsound * sqrt(g0 h_swl)
         // with standard gravity so that c0 stays positive.
         let c0 = if c0 > 0.0 { c0 } else { scene.coefsound * (9.81 * scene.h_swl()).sqrt() };
-        let b_tait = c0 * c0 * scene.rho0 / scene.gamma;
+        let b_tait = eos::stiffness(c0, scene.rho0, scene.gamma);
         let (alpha, nu, cs, ci) = match scene.viscosity {
             Viscosity::Artificial { alpha } => (alpha, 0.0, 0.0, 0.0),
             Viscosity::Laminar { nu } => (0.0, nu, 0.0, 0.0),
