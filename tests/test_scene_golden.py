@@ -27,6 +27,9 @@ from watersim.cli import ALL_CASES, builder_from_args
 ROOT = Path(__file__).resolve().parents[1]
 GOLDEN = ROOT / "tests" / "data" / "scene_golden.json"
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
+BARE_SCENE: dict[str, Any] = {"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [2, 1]},
+                              "fluid": [{"min": [0, 0], "max": [1, 0.5]}]}
+"""The keys a scene must have; the core fills in the rest."""
 
 
 def _case_names() -> list[str]:
@@ -63,14 +66,40 @@ def test_case_builds_the_recorded_core_scene(name: str, golden: dict[str, Any]) 
 def test_resolution_fills_the_cores_defaults() -> None:
     """The comparison above is only as strict as the resolution: a bare scene gets every
     default, and the defaults are the ones the core runs with."""
-    bare = {"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [2, 1]},
-            "fluid": [{"min": [0, 0], "max": [1, 0.5]}]}
+    bare = BARE_SCENE
     resolved = json.loads(_core.resolve_scene(json.dumps(bare)))
     assert resolved["viscosity"] == {"model": "artificial", "alpha": 0.01}
     assert resolved["diffusion"] == {"model": "fourtakas", "delta": 0.1}
     assert resolved["cfl"] == 0.2
     with pytest.raises(_core.SceneError, match="dp"):
         _core.resolve_scene(json.dumps({**bare, "dp": -1.0}))
+
+
+def test_scene_defaults_are_what_the_core_fills_in() -> None:
+    """``scene_defaults()`` is the core's own table: a bare scene resolves to it, key by key,
+    and a model named by its tag alone takes its parameters from it."""
+    defaults = _core.scene_defaults()
+    bare = BARE_SCENE
+    resolved = json.loads(_core.resolve_scene(json.dumps(bare)))
+    for key, value in defaults.items():
+        if not isinstance(value, dict):
+            assert resolved[key] == value, key
+    assert resolved["boundary"] == defaults["boundary"]
+    assert resolved["viscosity"] == {"model": defaults["viscosity"]["model"],
+                                     "alpha": defaults["viscosity"]["alpha"]}
+    sps = json.loads(_core.resolve_scene(json.dumps(
+        {**bare, "viscosity": {"model": "laminar_sps"}, "integrator": {"scheme": "verlet"}})))
+    assert sps["viscosity"] == {"model": "laminar_sps", **{
+        k: defaults["viscosity"][k] for k in ("nu", "cs", "ci")}}
+    assert sps["integrator"]["euler_every"] == defaults["integrator"]["euler_every"]
+
+
+def test_params_come_from_the_cores_params() -> None:
+    bare = BARE_SCENE
+    params = _core.Simulation(json.dumps(bare)).params()
+    assert params["kernel"] == "wendland" and params["shifting"] is None
+    assert params["boundary_layers"] == 3 and isinstance(params["n_cells"], int)
+    assert params["h"] == 0.1 * 2 ** 0.5
 
 
 if __name__ == "__main__" and sys.argv[1:] == ["--write"]:

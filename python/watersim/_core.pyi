@@ -28,6 +28,13 @@ def resolve_scene(scene_json: str) -> str:
     """The scene as the core runs it: checked (``SceneError`` naming the field) and returned as
     JSON with every default filled in."""
 
+def scene_defaults() -> dict[str, Any]:
+    """The core's default of every optional scene key, as nested dicts laid out as the scene:
+    ``scene_defaults()["viscosity"]["nu"]`` is the default of ``viscosity.nu``. A table holds
+    its default model and the parameters of every model; ``shifting`` and ``damping``, off by
+    default, hold their parameters' defaults for when they are on. (``Defaults`` in
+    ``crates/sph-core/src/scene/defaults.rs``.)"""
+
 class Simulation:
     """A WCSPH simulation built from a scene in its JSON form."""
 

@@ -1,7 +1,7 @@
 """Closed triangle meshes for 3D bathymetry: reading (STL via meshio), checks, bed heights.
 
 The core samples a closed, outward-oriented triangle mesh into wall particles
-(``crates/sph-core/src/scene.rs``, ``Obstacle::Mesh``; parry's pseudo-normal inside test). It
+(``crates/sph-core/src/scene/geometry.rs``, ``Obstacle::Mesh``; parry's pseudo-normal inside test). It
 only checks that the triangles index the vertices; a mesh with holes or flipped triangles would
 give a wrong inside/outside test, silently. This module checks, in Python and before anything
 is built, what the core assumes:

@@ -34,7 +34,7 @@ Default numerics, shared by every case, and why:
 - ``integrator="symplectic"``: second-order, time-reversible scheme, the DualSPHysics default.
 - ``rho0=1000`` kg/m^3, ``gravity=9.81`` m/s^2.
 - Stability monitors (docs/stability.md): ``density_band=0.5``, ``lost_fraction_limit=0.01``,
-  ``energy_growth_limit=0.05``, the core's own defaults (``crates/sph-core/src/scene.rs``):
+  ``energy_growth_limit=0.05``, the core's own defaults (``crates/sph-core/src/scene/defaults.rs``):
   loose enough that a healthy run never trips them, tight enough to stop a diverging one
   within a few steps.
 """
@@ -81,7 +81,7 @@ FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
 """Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
 register instead of four, as DualSPHysics forms its forces; the state stays f64). Not with
 ``viscosity="laminar_sps"``, whose loop is f64 only. ``ForcePrecision`` in
-``crates/sph-core/src/scene.rs``; docs/benchmarks.md measures speed and accuracy."""
+``crates/sph-core/src/scene/numerics.rs``; docs/benchmarks.md measures speed and accuracy."""
 
 MAX_DENSITY_BAND = 1.0
 """Largest ``density_band`` accepted: the band ``rho0 (1 -+ density_band)`` then reaches
@@ -176,12 +176,12 @@ class SceneBuilder:
         integrator: ``"symplectic"`` or ``"verlet"``.
         euler_every: Verlet: one Euler step every this many steps.
         boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see :data:`BOUNDARY_MODELS`
-            and ``Boundary`` in ``crates/sph-core/src/scene.rs``).
+            and ``Boundary`` in ``crates/sph-core/src/scene/numerics.rs``).
         force_precision: arithmetic of the force loop's pair terms, ``"f64"`` or ``"f32"``
             (see :data:`FORCE_PRECISIONS`).
         shifting: particle shifting's coefficient ``A`` [-] (Lind et al. 2012 with Skillen et
             al. 2013's ``D = A h |u| dt``; 2 is DualSPHysics' value, 1-6 the proposed range);
-            ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene.rs``.
+            ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene/numerics.rs``.
         shifting_threshold: particle divergence at and below which a particle counts as on
             the free surface and is not shifted [-], in (0, dim); ``None``: 1.5 in 2D, 2.75
             in 3D. Only with ``shifting``.

@@ -175,30 +175,8 @@ impl Simulation {
     }
 
     /// Derived parameters (h, c0, mass, ...) as a dict.
-    fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let p = self.inner.params();
-        let d = PyDict::new(py);
-        d.set_item("dim", p.dim)?;
-        d.set_item("dp", p.dp)?;
-        d.set_item("h", p.h)?;
-        d.set_item("support", p.support)?;
-        d.set_item("cell_size", p.cell_size)?;
-        d.set_item("n_cells", p.n_cells)?;
-        d.set_item("mass", p.mass)?;
-        d.set_item("rho0", p.rho0)?;
-        d.set_item("c0", p.c0)?;
-        d.set_item("b_tait", p.b_tait)?;
-        d.set_item("gamma", p.gamma)?;
-        d.set_item("boundary_layers", p.boundary_layers)?;
-        d.set_item("kernel", p.kernel)?;
-        d.set_item("viscosity", p.viscosity)?;
-        d.set_item("diffusion", p.diffusion)?;
-        d.set_item("integrator", p.integrator)?;
-        d.set_item("boundary", p.boundary)?;
-        d.set_item("shifting", p.shifting)?;
-        d.set_item("force_precision", p.force_precision)?;
-        d.set_item("dt_floor", p.dt_floor)?;
-        Ok(d)
+    fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.inner.params())
     }
 
     /// Shepard-normalised interpolation of fluid fields at `points` (M, dim):
@@ -357,10 +335,25 @@ fn resolve_scene(py: Python<'_>, scene_json: &str) -> PyResult<String> {
     sph_core::Scene::from_json(scene_json).map(|s| s.to_json()).map_err(|e| to_py_err(py, e))
 }
 
+/// The core's default of every optional scene key, as nested dicts laid out as the scene
+/// (`scene_defaults()["viscosity"]["nu"]` is the default of `viscosity.nu`).
+#[pyfunction]
+fn scene_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_python(py, &sph_core::scene::Defaults::default())
+}
+
+/// A serde value as Python objects (dicts, lists, floats, ints, strings, None), through JSON:
+/// floats keep every bit (shortest round-trip digits both ways).
+fn to_python<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| PyRuntimeError::new_err(format!("serialising: {e}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulation>()?;
     m.add_function(wrap_pyfunction!(resolve_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_defaults, m)?)?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("InstabilityError", m.py().get_type::<InstabilityError>())?;
     Ok(())

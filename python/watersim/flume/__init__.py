@@ -23,7 +23,7 @@ Coordinates (the same in every input and output):
 Gauge *positions* are in these coordinates; *elevations* (surface elevation eta, run-up) are
 reported relative to the SWL, positive up, in metres.
 
-What is built (the core's scene, see ``crates/sph-core/src/scene.rs``):
+What is built (the core's scene, see ``crates/sph-core/src/scene/``):
 
 - the tank box ``[x_back, length] x [0, height]`` (``x [0, width]`` in 3D), where ``x_back < 0``
   leaves room behind the paddle for its ``boundary_layers`` plate and its largest backward
