@@ -6,6 +6,7 @@
 //! The solver is driven through the object-safe [`Simulation`] trait.
 
 pub mod absorption;
+pub mod boundary;
 pub mod error;
 pub mod geometry;
 pub mod kernel;

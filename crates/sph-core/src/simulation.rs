@@ -15,17 +15,16 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::absorption::AbsorberState;
-use crate::motion::PaddlePose;
+use crate::boundary::{wall_model, WallModel};
+use crate::motion::{Paddle, PaddlePose};
 use crate::phases::{self, Phase};
 use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 use crate::threads::with_workers_polling;
 use crate::physics::eos::{density_at_pressure, pressure};
-use crate::physics::forces::{
-    boundary_density_rate, fluid_forces, shifting_fields, sps_stress, wall_density_from_fluid, Fields, StepLimits,
-};
+use crate::physics::forces::{fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
-use crate::scene::{Boundary, Integrator, Scene};
+use crate::scene::{Integrator, Scene};
 
 trait NanIfInfinite {
     fn pipe_nan(self) -> Self;
@@ -222,8 +221,8 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     paddle_time: Real,
     /// Active absorption's correction of the paddle's displacement; None without absorption.
     absorber: Option<AbsorberState>,
-    /// Accelerations of the paddle particles in storage order (Adami walls with a paddle only).
-    moving_acc: Vec<D::V>,
+    /// The wall model, chosen by the scene's `boundary`.
+    walls: Box<dyn WallModel<D, K>>,
     gauges: Vec<GaugeRecord>,
     /// Box outside which fluid particles are excluded.
     domain: (D::V, D::V),
@@ -310,6 +309,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
         let blocks = n.div_ceil(PERMUTE_BLOCK);
         let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
+        let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
         let mut solver = Self {
             scene,
             c,
@@ -328,7 +328,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             paddle_levels: (0.0, 0.0),
             paddle_time: 0.0,
             absorber: None,
-            moving_acc: Vec::new(),
+            walls,
             gauges: Vec::new(),
             domain: (lo, hi),
             n_excluded: 0,
@@ -341,9 +341,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             solver.paddle_levels = (hinge, swl);
             if paddle.absorption.is_some() {
                 solver.absorber = Some(AbsorberState::default());
-            }
-            if solver.scene.boundary == Boundary::Adami {
-                solver.moving_acc = vec![D::V::ZERO; solver.p.n_moving];
             }
         }
         solver.gauges = solver.scene.gauges.iter().map(|g| solver.new_record(g)).collect();
@@ -387,27 +384,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         });
     }
 
-    /// The paddle particles' accelerations at the current pose (Adami walls need the wall's
-    /// acceleration), by a central difference of the motion law's velocities over 2e-5 s.
-    fn update_moving_acc(&mut self) {
-        const DT: Real = 1e-5;
-        let Some(paddle) = &self.scene.paddle else { return };
-        if self.moving_acc.is_empty() {
-            return;
-        }
-        let (hinge, swl) = self.paddle_levels;
-        let t0 = (self.paddle_time - DT).max(0.0);
-        let (before, after) = (paddle.pose(t0, hinge, swl), paddle.pose(t0 + 2.0 * DT, hinge, swl));
-        let up = D::DIM - 1;
-        let (n_fixed, reference) = (self.p.n_fixed as u32, &self.moving_ref);
-        let ids = &self.p.id[self.p.n_fixed..self.p.fluid_start()];
-        self.moving_acc.par_iter_mut().zip(ids.par_iter()).for_each(|(a, &id)| {
-            let r = reference[(id - n_fixed) as usize];
-            let (_, u0) = before.apply(r.get(0), r.get(up));
-            let (_, u1) = after.apply(r.get(0), r.get(up));
-            *a = in_flume_plane::<D>([(u1[0] - u0[0]) / (2.0 * DT), (u1[1] - u0[1]) / (2.0 * DT)]);
-        });
-    }
 
     /// Kinetic plus potential energy of the fluid still in the domain [J].
     pub fn fluid_energy(&self) -> Real {
@@ -775,13 +751,14 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let c = self.c;
         let fs = self.p.fluid_start();
         let mut timer = phases::Timer::start();
-        if self.scene.boundary == Boundary::Adami {
-            self.update_moving_acc();
-            let p = &mut self.p;
-            let (rho_walls, rho_fluid) = p.rho.split_at_mut(fs);
-            let (pos, kind, n_fixed) = (&p.pos, &p.kind, p.n_fixed);
-            wall_density_from_fluid(&c, &self.kernel, &self.grid, pos, kind, rho_fluid, n_fixed, &self.moving_acc, rho_walls);
-        }
+        let (paddle, (hinge, swl), paddle_time, reference) = (&self.scene.paddle, self.paddle_levels, self.paddle_time, &self.moving_ref);
+        let n_fixed = self.p.n_fixed as u32;
+        let moving_acc = |ids: &[u32], out: &mut [D::V]| {
+            if let Some(paddle) = paddle {
+                paddle_accelerations::<D>(paddle, hinge, swl, paddle_time, ids, n_fixed, reference, out);
+            }
+        };
+        self.walls.before_forces(&c, &self.kernel, &self.grid, &mut self.p, &moving_acc);
         if VISC == VISC_LAMINAR_SPS {
             let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
@@ -792,20 +769,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
         let (kernel, grid) = (&self.kernel, &self.grid);
         let mut fluid = || fluid_forces::<D, K, VISC, DIFF>(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
-        let limits = match self.scene.boundary {
-            // The walls' continuity and the fluid's forces read the same fields and write apart:
-            // one fork-join for both, so that the threads wait for each other once, not twice
-            // (a thread the host stalls holds up every join; docs/benchmarks.md, Session 15).
-            // The fluid's loop runs first on this thread and the walls' waits for the other:
-            // the walls first on both held the second thread's start of the fluid's loop back
-            // by the walls' whole time (Session 16).
-            Boundary::Dbc => rayon::join(fluid, || boundary_density_rate(&c, kernel, grid, fields, drho_walls)).0,
-            // densities set above; the integrator leaves them alone
-            Boundary::Adami => {
-                drho_walls.fill(0.0);
-                fluid()
-            }
-        };
+        let limits = self.walls.forces(&c, kernel, grid, fields, drho_walls, &mut fluid);
         timer.lap(Phase::Forces);
         limits
     }
@@ -940,6 +904,23 @@ fn on_pool<R: Send>(op: impl FnOnce() -> R + Send) -> R {
     rayon::scope(|_| with_workers_polling(op))
 }
 
+/// The accelerations of the paddle particles of the ids `ids` at the pose of time `t` (Adami
+/// walls need the wall's acceleration), by a central difference of the motion law's velocities
+/// over 2e-5 s. `reference`: rest positions indexed by `id - n_fixed`.
+#[allow(clippy::too_many_arguments)]
+fn paddle_accelerations<D: Dim>(paddle: &Paddle, hinge: Real, swl: Real, t: Real, ids: &[u32], n_fixed: u32, reference: &[D::V], out: &mut [D::V]) {
+    const DT: Real = 1e-5;
+    let t0 = (t - DT).max(0.0);
+    let (before, after) = (paddle.pose(t0, hinge, swl), paddle.pose(t0 + 2.0 * DT, hinge, swl));
+    let up = D::DIM - 1;
+    out.par_iter_mut().zip(ids.par_iter()).for_each(|(a, &id)| {
+        let r = reference[(id - n_fixed) as usize];
+        let (_, u0) = before.apply(r.get(0), r.get(up));
+        let (_, u1) = after.apply(r.get(0), r.get(up));
+        *a = in_flume_plane::<D>([(u1[0] - u0[0]) / (2.0 * DT), (u1[1] - u0[1]) / (2.0 * DT)]);
+    });
+}
+
 /// A vector in the flume's x-z plane (the paddle moves in it): `xz[0]` along x, `xz[1]`
 /// vertical, zero across the width.
 fn in_flume_plane<D: Dim>(xz: [Real; 2]) -> D::V {
@@ -1008,7 +989,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         &self.p.rho
     }
     fn pressures(&self) -> Vec<Real> {
-        self.p.rho.par_iter().map(|&r| pressure(&self.c, r)).collect()
+        let fs = self.p.fluid_start();
+        let (c, walls) = (&self.c, &self.walls);
+        self.p.rho.par_iter().enumerate().map(|(i, &r)| if i < fs { walls.pressure(c, r) } else { pressure(c, r) }).collect()
     }
     fn kinds(&self) -> &[u8] {
         &self.p.kind
@@ -1037,7 +1020,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             + self.tau.capacity() * size_of::<D::Sym>()
             + self.shift.as_ref().map_or(0, |s| s.grad.capacity() * v + s.div.capacity() * r)
             + self.moving_ref.capacity() * v
-            + self.moving_acc.capacity() * v
+            + self.walls.memory_bytes()
             + self.grid.memory_bytes()
             + scratch
     }
@@ -1073,10 +1056,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
                 Integrator::Verlet { .. } => "verlet",
             },
             force_precision: if self.c.pair_f32 { "f32" } else { "f64" },
-            boundary: match s.boundary {
-                Boundary::Dbc => "dbc",
-                Boundary::Adami => "adami",
-            },
+            boundary: self.walls.name(),
             shifting: s.shifting.map(|sh| sh.coefficient),
             dt_floor: self.dt_floor,
         }

@@ -6,7 +6,7 @@
 
 use rayon::prelude::*;
 
-use super::eos::{density_at_pressure, pressure, sound_speed};
+use super::eos::{pressure, sound_speed};
 use super::{Constants, NEIGHBOUR_TASK, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
@@ -21,7 +21,7 @@ use crate::particles::KIND_EXCLUDED;
 /// predictable), and trimming the stencil rows to the support sphere, per group or once for
 /// all groups (its per-row arithmetic cost more than the candidates it saved, 2D and 3D).
 #[inline(always)]
-fn for_each_pair<D: Dim>(
+pub(crate) fn for_each_pair<D: Dim>(
     grid: &CellGrid<D>,
     support2: Real,
     group: usize,
@@ -226,66 +226,6 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 #[inline(always)]
 pub(crate) fn hydrostatic_free_difference<F: PairFloat>(c: &Constants, p_ba: F, z_ab: F) -> F {
     (p_ba - F::of(c.rho0_g) * z_ab) * F::of(c.inv_c0_2)
-}
-
-/// Continuity for wall particles (dynamic boundary condition, Crespo et al. 2007): walls gather
-/// `drho_a/dt = sum_b m v_ab.grad_a W_ab` over fluid neighbours only.
-pub fn boundary_density_rate<D: Dim, K: Kernel>(
-    c: &Constants,
-    kernel: &K,
-    grid: &CellGrid<D>,
-    f: Fields<'_, D>,
-    drho: &mut [Real],
-) {
-    let support2 = c.support * c.support;
-    drho.par_iter_mut().enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(a, drho_a)| {
-        let (pa, va) = (f.pos[a], f.vel[a]);
-        let mut sum = 0.0;
-        for_each_pair(grid, support2, GROUP_FLUID, f.pos, pa, |b, r, _, dist| {
-            let fk = kernel.grad_factor(dist);
-            sum += c.mass * (va - f.vel[b]).dot(r * fk);
-        });
-        *drho_a = sum;
-    });
-}
-
-/// Wall densities of Adami, Hu & Adams (2012) Eq. 27 (see [`crate::scene::Boundary::Adami`]):
-/// for each wall particle `w` (slots `0..rho_walls.len()`), the Shepard average over its fluid
-/// neighbours of `p_f + rho_f (g - a_w) . r_wf`, floored at 0, turned into a density by the
-/// equation of state; `rho0` without fluid neighbours. `wall_acc` holds the accelerations of the
-/// moving wall particles (slots from `n_fixed`), empty when no wall moves.
-#[allow(clippy::too_many_arguments)]
-pub fn wall_density_from_fluid<D: Dim, K: Kernel>(
-    c: &Constants,
-    kernel: &K,
-    grid: &CellGrid<D>,
-    pos: &[D::V],
-    kind: &[u8],
-    rho_fluid: &[Real],
-    n_fixed: usize,
-    wall_acc: &[D::V],
-    rho_walls: &mut [Real],
-) {
-    let support2 = c.support * c.support;
-    let fs = rho_walls.len();
-    let mut g = D::V::ZERO;
-    g.set(D::DIM - 1, -c.gravity);
-    rho_walls.par_iter_mut().enumerate().with_max_len(NEIGHBOUR_TASK).for_each(|(w, rho_w)| {
-        let body = if w >= n_fixed && !wall_acc.is_empty() { g - wall_acc[w - n_fixed] } else { g };
-        let (mut w_sum, mut p_sum) = (0.0, 0.0);
-        for_each_pair(grid, support2, GROUP_FLUID, pos, pos[w], |b, r, _, dist| {
-            if kind[b] == KIND_EXCLUDED {
-                return;
-            }
-            let wk = kernel.w(dist);
-            let rho_b = rho_fluid[b - fs];
-            // r = r_w - r_f: below the water, (g . r) > 0 adds the hydrostatic head
-            p_sum += (pressure(c, rho_b) + rho_b * body.dot(r)) * wk;
-            w_sum += wk;
-        });
-        let p = if w_sum > 0.0 { (p_sum / w_sum).max(0.0) } else { 0.0 };
-        *rho_w = density_at_pressure(c, p);
-    });
 }
 
 /// SPS sub-particle stress `tau / rho^2` for each fluid particle (Dalrymple & Rogers 2006 Eq. 11,

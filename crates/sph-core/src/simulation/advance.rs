@@ -16,7 +16,7 @@ use crate::error::InstabilityKind;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::particles::{KIND_EXCLUDED, KIND_FLUID};
-use crate::scene::{Boundary, Damping};
+use crate::scene::Damping;
 use crate::threads::{for_each_chunk, Chunks};
 
 /// How a particle's density and motion advance in a sweep.
@@ -66,9 +66,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     /// twice the time of the separate passes over all particles.
     pub(super) fn sweep(&mut self, rule: Rule, dt: Real, last: bool) -> Findings {
         let fs = self.p.fluid_start();
-        // Adami walls: densities come from the fluid at each force evaluation, not integrated;
-        // DBC walls never go below rho0, so that they never suck fluid in (DualSPHysics)
-        let wall_floor = (self.scene.boundary == Boundary::Dbc).then_some(self.c.rho0);
+        let wall_floor = self.walls.integrated_density_floor(&self.c);
         let band = self.c.density_limits();
         let domain = self.domain;
         let shift = if last { self.shift.as_ref() } else { None };
