@@ -39,17 +39,19 @@ GAUGES_L = (0.5, 1.0, 1.5, 2.0)
 
 VARIANTS: dict[str, dict[str, Any]] = {
     "base": {},
-    "alpha0": {"alpha": 0.0},
-    "laminar": {"viscosity": "laminar", "nu": 1e-6},
+    "alpha0": {"viscosity": {"type": "artificial", "alpha": 0.0}},
+    "laminar": {"viscosity": {"type": "laminar", "nu": 1e-6}},
     "nodiff": {"diffusion": "none"},
     "verlet": {"integrator": "verlet"},
-    "verlet_alpha0": {"integrator": "verlet", "alpha": 0.0},
-    "verlet_alpha0.003": {"integrator": "verlet", "alpha": 0.003},
-    "verlet_alpha0.003_coefsound20": {"integrator": "verlet", "alpha": 0.003,
-                                      "coefsound": 20.0},
-    "verlet_alpha0.003_coefh2": {"integrator": "verlet", "alpha": 0.003, "coefh": 2.0},
+    "verlet_alpha0": {"integrator": "verlet", "viscosity": {"type": "artificial", "alpha": 0.0}},
+    "verlet_alpha0.003": {"integrator": "verlet",
+                          "viscosity": {"type": "artificial", "alpha": 0.003}},
+    "verlet_alpha0.003_coefsound20": {"integrator": "verlet", "coefsound": 20.0,
+                                      "viscosity": {"type": "artificial", "alpha": 0.003}},
+    "verlet_alpha0.003_coefh2": {"integrator": "verlet", "coefh": 2.0,
+                                 "viscosity": {"type": "artificial", "alpha": 0.003}},
 }
-"""Each variant's changes to the flume defaults (FlumeScene fields)."""
+"""Each variant's changes to the flume defaults (FlumeScene fields; an option as its table)."""
 
 
 def scene(dp: float = 0.025, **numerics: Any) -> tuple[FlumeScene, float]:
@@ -87,6 +89,13 @@ def run_variant(name: str) -> dict[str, Any]:
     }
 
 
+def _change(key: str, value: Any) -> str:
+    """One setting as the table shows it (``viscosity artificial alpha 0``)."""
+    if isinstance(value, dict):
+        return " ".join([key, *(f"{v}" if k == "type" else f"{k} {v:g}" for k, v in value.items())])
+    return f"{key} {value:g}" if isinstance(value, float) else f"{key} {value}"
+
+
 def table(records: Sequence[dict[str, Any]]) -> str:
     """Markdown table: one row per variant, H / H_target at each gauge."""
     cols = [f"{n:.2f}" for n in GAUGES_L]
@@ -94,8 +103,7 @@ def table(records: Sequence[dict[str, Any]]) -> str:
              + " | ".join(f"{float(c):g} L" for c in cols) + " |",
              "|---|---|---|---|" + "---|" * len(cols)]
     for r in records:
-        changes = ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}"
-                            for k, v in r["settings"].items()) or "flume defaults"
+        changes = ", ".join(_change(k, v) for k, v in r["settings"].items()) or "flume defaults"
         hs = " | ".join("-" if r["H_over_target"].get(c) is None
                         else f"{r['H_over_target'][c]:.3f}" for c in cols)
         lines.append(f"| {r['variant']} | {changes} | {r['steps']:,} | {r['cpu_s']:.0f} | {hs} |")

@@ -52,7 +52,7 @@ import watersim as ws
 from watersim import analysis as an
 from watersim import wave_theory as wt
 from watersim.flume import lattice_dp
-from watersim.flume_cases import FLUME2D_ALPHA
+from watersim.numerics import FLUME2D_ALPHA
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -102,7 +102,7 @@ def flume(dp: float, alpha: float = FLUME2D_ALPHA,
         "gauges": [ws.ElevationGauge(x) for x in GAUGE_X],
         "dp": dp,
         "coefsound": 10.0,
-        "alpha": alpha,
+        "viscosity": ws.numerics.Artificial(alpha=alpha),
         "integrator": integrator,
     }
     return fl, kwargs
@@ -294,9 +294,9 @@ def analyse(scene: ws.FlumeScene, t: FloatArray, eta: FloatArray) -> dict[str, A
     for j, x in enumerate(GAUGE_X):
         measured = spectrum_check(t[keep], eta[keep, j], HS, TP)
         linear = spectrum_check(t[keep], motion.target_elevation(t[keep], x), HS, TP)
-        settings = (float(dp), float(scene.alpha), x, float(t0), float(t[-1]),
-                    scene.law.ramp_duration, float(coefh), float(scene.coefsound),
-                    scene.gravity)
+        settings = (float(dp), float(scene.viscosity.alpha), x,  # type: ignore[union-attr]
+                    float(t0), float(t[-1]), scene.law.ramp_duration, float(coefh),
+                    float(scene.coefsound), scene.g)  # type: ignore[arg-type]
         f = np.asarray(measured["frequencies"]) * TP
         s_meas, s_lin = np.asarray(measured["density"]), np.asarray(linear["density"])
         # where the energy goes missing: measured / linear-target variance in bands of f / fp

@@ -108,8 +108,7 @@ def make(dp: float, periods: float) -> tuple[ws.Flume, dict[str, Any]]:
         "coefsound": 10.0,
         # as the built-in kimmoun2d: water's viscosity, not alpha = 0.01, whose viscosity
         # against the bed damps the wave on the slope at coarse dp (docs/wave-flume.md)
-        "viscosity": "laminar",
-        "nu": 1e-6,
+        **ws.numerics.WATER,
         "integrator": "verlet",
         "gauges": gauges,
         "runup": True,

@@ -2,7 +2,7 @@
 
     PYTHONPATH=python python3 scripts/kimmoun_numerics.py OUT TAG [KEY=VALUE ...]
 
-KEY=VALUE are `watersim run kimmoun2d --set` values (dp, viscosity, nu, alpha, integrator, ...).
+KEY=VALUE are `watersim run kimmoun2d --set` values (dp, viscosity, viscosity.nu, integrator, ...).
 Writes OUT/TAG.json (settings, status, CPU and wall time, steps, analysis.json's content) and
 OUT/TAG.npz (fluid particles with 9 < x < 15.5 m every 0.02 s from t = 10 s, float32), and
 prints the wave height at each gauge, the breaking entry and the overturns found in the kept

@@ -27,7 +27,7 @@ def test_dambreak_2d_front_follows_martin_moyce() -> None:
     sim.run(UNTIL, callback_every=0.01, callback=sample)
     assert fronts[0] == pytest.approx(b.width)
     assert np.all(np.isfinite(fronts))
-    err = front_error(times, fronts, b.width, b.gravity, x_max=b.tank_length)
+    err = front_error(times, fronts, b.width, b.g, x_max=b.tank_length)
     print(
         f"\ndam break 2D dp={DP}: {sim.n_particles} particles, {sim.steps} steps; "
         f"RMS relative front error {100 * err.rms_rel_error:.1f} % over {err.n_points} points "

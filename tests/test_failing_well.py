@@ -330,7 +330,8 @@ def _flume(**kw: Any) -> ws.FlumeScene:
 
 BUILDERS = [
     (lambda: ws.DamBreak(dp=0.0), "dp", "positive"),
-    (lambda: ws.DamBreak(alpha=math.nan), "alpha", "finite"),
+    (lambda: ws.DamBreak(viscosity=ws.numerics.Artificial(alpha=math.nan)), "viscosity.alpha",
+     "finite"),
     (lambda: ws.DamBreak(width=5.0), "width", "wider than the tank"),
     (lambda: ws.Tank(depth=1.0, height=0.7), "depth", "deeper than the tank"),
     (lambda: ws.DamBreak(dp=1e-4).build(), "dp", "GiB"),

@@ -327,7 +327,8 @@ def test_defaults_follow_the_wave() -> None:
     assert sc.until == pytest.approx(ramp + sc.arrival_time(0.75 * 4.0) + 10 * T)
     cg = float(wt.group_velocity(T, D))
     assert sc.arrival_time(2.0) == pytest.approx(2.0 / cg, rel=1e-3)
-    assert sc.alpha == 0.01 and sc.coefh == 1.5
+    assert sc.viscosity is None and sc.coefh == 1.5  # the core's viscosity
+    assert sc.resolved_scene()["viscosity"] == {"model": "artificial", "alpha": 0.01}
 
 
 # ------------------------------------------------------------------------------------------------

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from watersim import wave_theory as wt
+from watersim.numerics import Artificial, Verlet
 from watersim.validation import CASES, metrics
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -141,5 +142,5 @@ def test_numerics_study_table_and_bad_input(capsys: pytest.CaptureFixture[str]) 
     assert mod.main(["nonsense"]) == 2 and "unknown variant" in capsys.readouterr().err
     assert mod.main(["--table"]) == 2
     scene, wl = mod.scene(**mod.VARIANTS["verlet_alpha0.003"])
-    assert scene.integrator == "verlet" and scene.alpha == 0.003
+    assert scene.integrator == Verlet() and scene.viscosity == Artificial(alpha=0.003)
     assert scene.flume.length == pytest.approx(3.25 * wl, abs=1e-3)

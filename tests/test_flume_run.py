@@ -43,7 +43,7 @@ def test_coarse_2d_piston_flume_makes_its_wave_one_wavelength_away() -> None:
         ws.RegularWave(height=height, period=period), paddle=ws.Piston(order=2, ramp_periods=1),
         dp=dp, coefsound=10.0, gauges=gauges, runup=False,
         # flume2d's numerics (docs/wave-flume.md): one force evaluation per step
-        alpha=0.003, integrator="verlet",
+        **ws.numerics.WAVE_CARRYING,
     )
     until = setup.law.ramp_duration + setup.arrival_time(wl) + 4.0 * period
     sim = setup.replace(until=until).build()
@@ -120,7 +120,7 @@ def test_every_builtin_case_builds(case: str) -> None:
     specs = sim.scene["gauges"]
     assert len({g["name"] for g in specs}) == len(specs)
     params = sim.params()
-    steps = setup.until / (setup.cfl * params["h"] / params["c0"])
+    steps = setup.until / (setup.core_value("cfl") * params["h"] / params["c0"])
     # coarse defaults: at most about 4e8 particle-steps (a few minutes on two cores; flume3d,
     # nine particles across its width, is the largest: about 3.8e8). kimmoun2d is the exception:
     # its plunging lip needs H/dp of about 7 (docs/wave-flume.md, "The lip against

@@ -90,7 +90,7 @@ def test_analyse_and_figure(ex: ModuleType, tmp_path: Path) -> None:
     json.dumps(result)
     pred = result["gauges"]["x0.30"]["predicted"]
     assert len(pred["density"]) == len(result["gauges"]["x0.30"]["measured"]["density"])
-    assert pred["alpha"] == scene.alpha and pred["dp"] == scene.dp
+    assert pred["alpha"] == scene.viscosity.alpha and pred["dp"] == scene.dp
 
 
 def test_kernel_gauge_factor_long_wave_limit(ex: ModuleType) -> None:

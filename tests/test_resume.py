@@ -157,7 +157,7 @@ def test_a_folder_that_cannot_be_resumed_is_refused_and_left_alone(
         last.write_bytes(last.read_bytes()[:1000])
         expected = "unreadable"
     elif damage == "other_scene":
-        text = (out / "scene.toml").read_text().replace("coefsound = 20.0", "coefsound = 15.0")
+        text = "coefsound = 15.0\n" + (out / "scene.toml").read_text()
         (out / "scene.toml").write_text(text)
         expected = "of another scene"
     elif damage == "other_version":

@@ -112,7 +112,8 @@ def test_dambreak_builder_refuses_or_builds(
     dp: float, width: float, height: float, alpha: float, cfl: float
 ) -> None:
     try:
-        builder = watersim.DamBreak(dim=2, dp=dp, width=width, height=height, alpha=alpha, cfl=cfl)
+        builder = watersim.DamBreak(dim=2, dp=dp, width=width, height=height, cfl=cfl,
+                                    viscosity={"type": "artificial", "alpha": alpha})
         scene = builder.to_scene()
         scene["memory_limit_bytes"] = 4_000_000
         sim = watersim.Simulation(scene)

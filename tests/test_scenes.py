@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 import watersim
 from watersim import DamBreak, SceneError, Tank, _core
+from watersim import numerics as nm
 
 SCENE_KEYS = {
     "dim",
@@ -46,7 +47,8 @@ def test_scene_error_is_the_cores_and_a_value_error() -> None:
 
 
 def test_force_precision_reaches_the_core_and_bad_values_are_named() -> None:
-    assert Tank().to_scene()["force_precision"] == "f64"
+    assert "force_precision" not in Tank().to_scene()  # the core's default
+    assert Tank().resolved_scene()["force_precision"] == "f64"
     sim = watersim.Simulation(Tank(dp=0.05, force_precision="f32").to_scene())
     assert sim.params()["force_precision"] == "f32"
     assert watersim.Simulation(Tank(dp=0.05).to_scene()).params()["force_precision"] == "f64"
@@ -62,17 +64,19 @@ def test_force_precision_reaches_the_core_and_bad_values_are_named() -> None:
 
 
 def test_shifting_reaches_the_core_and_bad_values_are_named() -> None:
-    assert Tank().to_scene()["shifting"] is None
-    scene = Tank(shifting=2.0).to_scene()
-    assert scene["shifting"] == {"coefficient": 2.0, "surface_threshold": None}
-    assert Tank(dim=3, shifting=1.0, shifting_threshold=2.5).to_scene()["shifting"] == {
+    assert "shifting" not in Tank().to_scene()
+    assert Tank(shifting=2.0).to_scene()["shifting"] == {"coefficient": 2.0}
+    shifting = nm.Shifting(coefficient=1.0, surface_threshold=2.5)
+    assert Tank(dim=3, shifting=shifting).to_scene()["shifting"] == {
         "coefficient": 1.0, "surface_threshold": 2.5}
+    assert Tank(shifting={}).resolved_scene()["shifting"] == {
+        "coefficient": nm.core_default("shifting.coefficient"), "surface_threshold": None}
     sim = watersim.Simulation(Tank(dp=0.05, shifting=2.0).to_scene())
     assert sim.params()["shifting"] == 2.0
     assert watersim.Simulation(Tank(dp=0.05).to_scene()).params()["shifting"] is None
-    for kwargs, field in [({"shifting": 0.0}, "shifting"),
-                          ({"shifting_threshold": 1.5}, "shifting_threshold"),
-                          ({"shifting": 2.0, "shifting_threshold": 2.0}, "shifting_threshold")]:
+    for kwargs, field in [({"shifting": 0.0}, "shifting.coefficient"),
+                          ({"shifting": {"surface_threshold": 2.0}}, "shifting.surface_threshold"),
+                          ({"shifting": {"threshold": 1.0}}, "shifting.threshold")]:
         with pytest.raises(SceneError, match=f"^{field}:"):
             Tank(**kwargs)
 
@@ -84,7 +88,8 @@ def test_shifting_reaches_the_core_and_bad_values_are_named() -> None:
 )
 def test_defaults_give_the_core_json_form(builder: watersim.SceneBuilder) -> None:
     scene = builder.to_scene()
-    assert set(scene) == SCENE_KEYS
+    assert set(scene) <= SCENE_KEYS
+    assert set(builder.resolved_scene()) >= SCENE_KEYS
     assert len(scene["tank"]["min"]) == len(scene["tank"]["max"]) == builder.dim
     assert json.loads(json.dumps(scene)) == scene
 
@@ -93,28 +98,29 @@ def test_dambreak_default_is_martin_moyce_geometry() -> None:
     b = DamBreak()
     assert (b.dim, b.width, b.height, b.tank_length) == (2, 1.0, 2.0, 4.0)
     assert b.height / b.width == 2.0  # n^2 = 2
-    assert b.kernel == "wendland" and b.integrator == "symplectic"
-    assert 0.01 <= b.alpha <= 0.1 and b.diffusion == "fourtakas" and b.delta == 0.1
+    assert b.core_value("kernel") == "wendland" and b.integrator is None
+    assert b.viscosity == nm.VERIFICATION["viscosity"] and b.diffusion is None
     scene = b.to_scene()
     assert scene["fluid"] == [{"min": [0.0, 0.0], "max": [1.0, 2.0]}]
-    assert scene["viscosity"] == {"model": "artificial", "alpha": b.alpha}
+    assert scene["viscosity"] == {"model": "artificial", "alpha": 0.02}
     d3 = DamBreak(dim=3)
     assert d3.tank_width is not None
     assert d3.to_scene()["fluid"][0]["max"] == [1.0, d3.tank_width, 2.0]  # spans the width
 
 
 def test_models_map_to_the_scene() -> None:
-    s = DamBreak(
-        viscosity="laminar_sps", nu=2e-6, diffusion="none", integrator="verlet", euler_every=50
-    ).to_scene()
-    assert s["viscosity"] == {"model": "laminar_sps", "nu": 2e-6, "cs": 0.12, "ci": 0.0066}
+    b = DamBreak(viscosity=nm.LaminarSps(nu=2e-6), diffusion="none",
+                 integrator={"type": "verlet", "euler_every": 50})
+    s = b.to_scene()
+    assert s["viscosity"] == {"model": "laminar_sps", "nu": 2e-6}
     assert s["diffusion"] == {"model": "none"}
     assert s["integrator"] == {"scheme": "verlet", "euler_every": 50}
-    assert DamBreak(viscosity="laminar").to_scene()["viscosity"] == {"model": "laminar", "nu": 1e-6}
-    assert DamBreak(diffusion="molteni").to_scene()["diffusion"] == {
-        "model": "molteni",
-        "delta": 0.1,
-    }
+    assert b.resolved_scene()["viscosity"] == {"model": "laminar_sps", "nu": 2e-6, "cs": 0.12,
+                                               "ci": 0.0066}
+    assert DamBreak(viscosity="laminar").resolved_scene()["viscosity"] == {
+        "model": "laminar", "nu": 1e-6}
+    assert DamBreak(diffusion="molteni").resolved_scene()["diffusion"] == {
+        "model": "molteni", "delta": 0.1}
 
 
 BAD_DAMBREAK = [
@@ -133,10 +139,15 @@ BAD_DAMBREAK = [
     ({"diffusion": "ddt"}, "diffusion", "'none', 'molteni', 'fourtakas'"),
     ({"integrator": "rk4"}, "integrator", "'symplectic', 'verlet'"),
     ({"cfl": 1.5}, "cfl", "at most 1"),
-    ({"alpha": -0.1}, "alpha", "negative"),
+    ({"viscosity": {"type": "artificial", "alpha": -0.1}}, "viscosity.alpha", "negative"),
+    ({"viscosity": {"type": "laminar", "alpha": 0.1}}, "viscosity.alpha",
+     "not a parameter of viscosity model 'laminar'"),
+    ({"viscosity": 0.1}, "viscosity", "expected Artificial"),
     ({"coefsound": 0.0}, "coefsound", "positive"),
-    ({"euler_every": 0}, "euler_every", "at least 1"),
-    ({"euler_every": 2.5}, "euler_every", "integer"),
+    ({"integrator": {"type": "verlet", "euler_every": 0}}, "integrator.euler_every",
+     "at least 1"),
+    ({"integrator": {"type": "verlet", "euler_every": 2.5}}, "integrator.euler_every",
+     "integer"),
     ({"gravity": math.nan}, "gravity", "finite"),
     ({"until": -1.0}, "until", "positive"),
     ({"boundary_layers": 0}, "boundary_layers", "at least 1"),

@@ -160,4 +160,4 @@ def test_scene_can_be_given_as_json_text() -> None:
 
     scene = DamBreak(dp=0.1).to_scene()
     sim = Simulation(json.dumps(scene))
-    assert sim.scene == scene and sim.n_fluid == 200
+    assert sim.scene == DamBreak(dp=0.1).resolved_scene() and sim.n_fluid == 200

@@ -17,11 +17,13 @@ Public names:
   (:mod:`watersim.rundir`: checkpoints, resume, re-analysis).
 - :func:`load_scene`: a scene file (TOML, :mod:`watersim.scenefile`) as builder + output options.
 - :mod:`wave_theory`, :mod:`analysis`: wave-maker theory and gauge analysis.
+- :mod:`numerics`: the numerical options (``ws.numerics.Laminar(nu=2e-6)``) and the presets of
+  the built-in cases.
 """
 
 from __future__ import annotations
 
-from . import analysis, wave_theory
+from . import analysis, numerics, wave_theory
 from ._core import InstabilityError, SceneError
 from ._version import __version__
 from .checkpoint import load_checkpoint, save_checkpoint
@@ -87,6 +89,7 @@ __all__ = [
     "load_checkpoint",
     "load_martin_moyce",
     "load_scene",
+    "numerics",
     "save_checkpoint",
     "water_column_height",
     "wave_theory",

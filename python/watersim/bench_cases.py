@@ -127,6 +127,7 @@ def piston2d(dp: float) -> dict[str, Any]:
     ``lattice_layers(0.266, dp) * dp`` (the flume refuses a depth that is not whole layers), so
     dp, the particles and the water stay DualSPHysics' and the paddle law is computed for the
     water that is really there."""
+    from . import numerics as nm
     from .flume import Flume, Piston, PlaneBeach, RegularWave, lattice_layers
 
     depth = lattice_layers(0.266, dp) * dp
@@ -145,10 +146,9 @@ def piston2d(dp: float) -> dict[str, Any]:
             coefh=1.2,
             coefsound=20.0,
             cfl=0.2,
-            viscosity="artificial",
-            alpha=0.01,
-            diffusion="none",
-            integrator="symplectic",
+            viscosity=nm.Artificial(alpha=0.01),
+            diffusion=nm.NoDiffusion(),
+            integrator=nm.Symplectic(),
             # DualSPHysics' DBC; the flume's own default is Adami's walls
             boundary="dbc",
             boundary_layers=1,

@@ -51,11 +51,12 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
+from . import numerics as nm
 from . import overrides, rundir
-from ._version import __version__
 from ._core import InstabilityError, SceneError
 from ._jsonio import json_ready as _jsonable
 from ._jsonio import write_json_atomic
+from ._version import __version__
 from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .checkpoint import LastGood
@@ -77,12 +78,13 @@ from .measure import (
     front_position,
     water_column_height,
 )
+from .numerics import FORCE_PRECISIONS
 from .output import RunLog, RunOutputs
 from .runrecord import RUN_FIELDS, error_record, rayon_threads, run_record, stop_status
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
-from .scenes import FORCE_PRECISIONS, DamBreak, SceneBuilder, Tank
+from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 from .stress import add_parser as add_stress_parser
 from .validation import sweep as _validation
@@ -117,7 +119,9 @@ def settable_keys(case: str) -> list[str]:
     skip = set(fixed)
     if fixed.get("dim") == 2:
         skip.update(cls.THREE_D_ONLY)
-    return sorted(name for name in cls.field_names() if name not in skip)
+    options = [key for name in nm.OPTION_CLASSES for key in nm.option_keys(name)]
+    return sorted([name for name in cls.field_names()
+                   if name not in skip and name not in nm.OPTION_CLASSES] + options)
 
 
 def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
@@ -138,12 +142,20 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     valid = settable_keys(case)
     hints = typing.get_type_hints(cls)
     values: dict[str, Any] = {}
+    option_items: dict[str, str] = {}
     for item in overrides.parse(settings):
         if item.key not in valid:
             why = (f"is fixed by the case {case}" if item.key in fixed
                    else f"is unknown for {case}{did_you_mean(item.key, valid)}")
             raise CliError(f"--set: key {item.key!r} {why}; valid keys: {', '.join(valid)}")
-        values[item.key] = item.typed(hints[item.key])
+        if item.key.partition(".")[0] in nm.OPTION_CLASSES:
+            option_items[item.key] = item.text
+        else:
+            values[item.key] = item.typed(hints[item.key])
+    if option_items:
+        case_builder = cls(**fixed)  # the case's own options, which the items change
+        for name in nm.OPTION_CLASSES:
+            values[name] = nm.from_settings(name, getattr(case_builder, name), option_items)
     return cls(**fixed, **values)
 
 
@@ -204,7 +216,7 @@ def _still_water_checks(sim: Simulation, builder: Tank) -> dict[str, Any]:
     surface = float(pos[middle, -1].max() + 0.5 * builder.dp) if np.any(middle) else math.nan
     return {
         "max_speed": speed,
-        "max_speed_over_sqrt_gd": speed / math.sqrt(builder.gravity * builder.depth),
+        "max_speed_over_sqrt_gd": speed / math.sqrt(builder.g * builder.depth),
         "surface_z": surface,
         "surface_minus_depth_over_dp": (surface - builder.depth) / builder.dp,
     }
@@ -583,7 +595,7 @@ def _martin_moyce_summary(
     if abs(builder.height / builder.width - 2.0) > 0.01:
         return {"reference": "lethe", "note": "column height is not twice its width (n^2 != 2)"}
     try:
-        err = front_error(times, fronts, builder.width, builder.gravity, x_max=builder.tank_length)
+        err = front_error(times, fronts, builder.width, builder.g, x_max=builder.tank_length)
     except ValueError as exc:
         return {"reference": "lethe", "note": str(exc)}
     return err.as_dict()

@@ -10,11 +10,10 @@ Each case is a function of the ``--set`` values that returns a checked
 positions that follow from the wave (flume2d, flume3d) are recomputed from the values set.
 
 The defaults are coarse on purpose: each case runs in a few minutes on two cores (see
-:data:`FLUME_CASES` for each one's cost). They use ``coefsound = 10`` (``c0 = 10 sqrt(g d)`` at
-the paddle depth d: ten times the shallow-water wave speed, density variations about 1 % of
-rho0; Monaghan's rule c0 >= 10 |v|max holds for non-breaking waves and, from the deeper paddle
-depth, for the breakers of kimmoun2d and stansby2d too), which halves the number of steps
-against the library default of 20. Refine with ``--set dp=...`` (and ``coefsound=20``).
+:data:`FLUME_CASES` for each one's cost). They use ``coefsound = 10``
+(:data:`watersim.numerics.FLUME_CASE`, which halves the number of steps against the core's 20)
+and the other numerics of :mod:`watersim.numerics`. Refine with ``--set dp=...`` (and
+``coefsound=20``).
 
 Each case's default dp is a nominal spacing snapped to ``depth / round(depth / dp)``
 (:func:`~watersim.flume.lattice_dp`, also after ``--set flume.depth=...``): the core fills the
@@ -35,7 +34,9 @@ from typing import Any
 import numpy as np
 
 from . import analysis as an
+from . import numerics as nm
 from . import wave_theory as wt
+from .checks import _positive
 from .errors import did_you_mean
 from .flume import (
     DampingZone,
@@ -51,7 +52,7 @@ from .flume import (
     lattice_dp,
 )
 from .overrides import OverrideError, Overrides
-from .scenes import SceneBuilder, _positive
+from .scenes import SceneBuilder
 
 __all__ = [
     "BEJI_BATTJES_GAUGES",
@@ -83,15 +84,6 @@ BEJI_BATTJES_FILES: dict[float, str] = {
 }
 
 
-FLUME2D_ALPHA = 0.003
-"""Artificial viscosity of the flat-floor regular-wave case flume2d [-]. Its viscous decay of
-the wave height per wavelength is about ``2 nu k^2 L / c_g`` (Lamb 1932, section 348) with
-``nu = alpha h c0 / 8`` (Monaghan 2005, 2D): with alpha = 0.01 that is 1.8 % per wavelength at
-dp = 0.01 m, using up a 5 % height tolerance within three wavelengths; 0.003 costs 0.5 %
-(measured at dp = 0.025 m, where the formula gives 4.5 % for 0.01: alpha 0.01 against 0 costs
-6.6 % of the height at 1 L and 3.0 % per wavelength from 1 to 2 L)."""
-
-
 FlumeCaseError = OverrideError
 """A bad ``--set`` key or value for a flume case (the CLI prints it, exit code 2)."""
 
@@ -113,11 +105,18 @@ class _Settings(Overrides):
 
     def numerics(self, **defaults: Any) -> dict[str, Any]:
         """The numerical parameters (:class:`~watersim.SceneBuilder` fields and
-        ``sample_interval``): the case's ``defaults`` with the values set applied."""
+        ``sample_interval``): the case's ``defaults`` with the values set applied, an option's
+        parameters by their dotted keys (``viscosity.alpha``)."""
         # dim is fixed by the flume; the energy monitor does not run with a paddle
         names = [n for n in (*SceneBuilder.field_names(), "sample_interval")
-                 if n not in ("dim", "energy_growth_limit")]
-        return self.fields(FlumeScene, names, defaults)
+                 if n not in ("dim", "energy_growth_limit", *nm.OPTION_CLASSES)]
+        out = self.fields(FlumeScene, names, defaults)
+        for name in nm.OPTION_CLASSES:
+            self.keys += nm.option_keys(name)
+            value = nm.from_settings(name, defaults.get(name), self.items)
+            if value is not None:
+                out[name] = value
+        return out
 
 
 def _quiet_scene(**kwargs: Any) -> FlumeScene:
@@ -173,8 +172,7 @@ def case_flume2d(s: _Settings) -> FlumeScene:
     flume = Flume(length=length, depth=depth, damping=damping)
     gauges = [ElevationGauge(round(n * wl, 3)) for n in (1, 2, 3)]
     gauges += _reflection_triplet(1.5 * wl, wl)
-    num = s.numerics(dp=lattice_dp(depth, 0.025), coefsound=10.0, alpha=FLUME2D_ALPHA,
-                     integrator="verlet")
+    num = s.numerics(dp=lattice_dp(depth, 0.025), **nm.FLUME_CASE, **nm.WAVE_CARRYING)
     return _finish(s, 4.0, 3.0 * wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
 
@@ -218,8 +216,8 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     # over the upper slope, a few particles deep at coarse dp, which the kernel method reads
     # as dry)
     gauges = [dataclasses.replace(g, method="particle") for g in _unique_positions(gauges)]
-    num = s.numerics(dp=lattice_dp(depth, 0.0168), coefsound=10.0, until=round(20 * wave.period, 3),
-                     viscosity="laminar", nu=1e-6, integrator="verlet")
+    num = s.numerics(dp=lattice_dp(depth, 0.0168), until=round(20 * wave.period, 3),
+                     **nm.FLUME_CASE, **nm.WATER, integrator=nm.Verlet())
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
@@ -255,7 +253,7 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     flume = Flume(length=length, depth=depth, beach=beach)
     gauges = [ElevationGauge(x, method="particle") for x in STANSBY_GAUGES]
     gauges += [ElevationGauge(0.8, method="particle"), ElevationGauge(1.8, method="particle")]
-    num = s.numerics(dp=lattice_dp(depth, 0.03), coefsound=10.0, until=round(10 * wave.period, 3))
+    num = s.numerics(dp=lattice_dp(depth, 0.03), **nm.FLUME_CASE, until=round(10 * wave.period, 3))
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
@@ -286,7 +284,7 @@ def case_bar2d(s: _Settings) -> FlumeScene:
     damping = s.apply("damping", DampingZone(length=round(wl, 2)))
     flume = Flume(length=length, depth=depth, beach=beji_battjes_profile(), damping=damping)
     gauges = [ElevationGauge(x) for x in BEJI_BATTJES_GAUGES if x <= length]
-    num = s.numerics(dp=lattice_dp(depth, 0.04), coefsound=10.0)
+    num = s.numerics(dp=lattice_dp(depth, 0.04), **nm.FLUME_CASE)
     return _finish(s, 3.0, max(g.x for g in gauges), flume=flume, wave=wave, paddle=paddle,
                    gauges=gauges, runup=False, **num)
 
@@ -307,7 +305,7 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
     length = s.value("flume.length", 16.0)
     flume = Flume(length=length, depth=depth, beach=beach)
     gauges = [ElevationGauge(x) for x in (2.0, 4.0, 6.0, 8.0, 9.5) if x <= length]
-    num = s.numerics(dp=lattice_dp(depth, 0.03), coefsound=10.0, until=14.0)
+    num = s.numerics(dp=lattice_dp(depth, 0.03), **nm.FLUME_CASE, until=14.0)
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
@@ -345,8 +343,7 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     y_mid = round(0.5 * width, 4)
     gauges = [ElevationGauge(round(0.5 * wl, 3), y=y_mid)]
     gauges += [ElevationGauge(round(wl, 3), y=round(f * width, 4)) for f in (0.25, 0.5, 0.75)]
-    num = s.numerics(dp=lattice_dp(depth, 0.022, width), coefsound=10.0, viscosity="laminar",
-                     nu=1e-6)
+    num = s.numerics(dp=lattice_dp(depth, 0.022, width), **nm.FLUME_CASE, **nm.WATER)
     return _finish(s, 5.0, wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
 

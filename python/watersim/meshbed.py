@@ -1,10 +1,10 @@
 """Closed triangle meshes for 3D bathymetry: reading (STL via meshio), checks, bed heights.
 
 The core samples a closed, outward-oriented triangle mesh into wall particles
-(``crates/sph-core/src/scene/geometry.rs``, ``Obstacle::Mesh``; parry's pseudo-normal inside test). It
-only checks that the triangles index the vertices; a mesh with holes or flipped triangles would
-give a wrong inside/outside test, silently. This module checks, in Python and before anything
-is built, what the core assumes:
+(``crates/sph-core/src/scene/geometry.rs``, ``Obstacle::Mesh``; parry's pseudo-normal inside
+test). It only checks that the triangles index the vertices; a mesh with holes or flipped
+triangles would give a wrong inside/outside test, silently. This module checks, in Python and
+before anything is built, what the core assumes:
 
 - the surface is closed: every edge borders exactly two triangles;
 - the triangles are oriented consistently: the two triangles of an edge run along it in

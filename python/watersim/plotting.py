@@ -39,6 +39,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .flume.gauges import csv_column
+from .numerics import core_default
 
 __all__ = ["PlotError", "plot_run"]
 
@@ -129,7 +130,8 @@ class _Wave:
         height = _number(wave.get("height"))
         if kind == "IrregularWave":
             height = _number(wave.get("hs"))
-        gravity = _number(((summary or {}).get("builder") or {}).get("gravity")) or 9.81
+        builder = (summary or {}).get("builder") or {}
+        gravity = _number(builder.get("gravity")) or core_default("gravity")
         return cls(kind, _number(wave.get("period")), height,
                    _number(analysis.get("still_water_depth")), gravity)
 
@@ -520,7 +522,7 @@ def _plot_front(csv_path: Path, summary: dict[str, Any] | None, out: Path) -> Pa
     if data.shape[0] == 0 or "x_front_m" not in header:
         return None
     builder = (summary or {}).get("builder") or {}
-    width, g = builder.get("width"), builder.get("gravity", 9.81)
+    width, g = builder.get("width"), builder.get("gravity") or core_default("gravity")
     if not width:
         raise PlotError(f"{csv_path.parent / 'summary.json'}: needs the column width "
                         "(builder.width) to scale front.csv")

@@ -10,9 +10,11 @@ A scene file is the keyword arguments of a builder written as TOML: ``type`` cho
 (``"dambreak"``: :class:`~watersim.DamBreak`, ``"tank"``: :class:`~watersim.Tank`,
 ``"flume"``: :class:`~watersim.FlumeScene`), the other top-level keys are its fields, and a
 field holding an object is a table of that object's fields (``[flume]``, ``[flume.beach]``,
-``[wave]``, ``[paddle]``, ``gauges = [{...}, ...]``, ``[runup]``). Where a field takes one of
-several classes (beach, wave, paddle, each gauge) the table names it with its own ``type`` key
-(:data:`TAGS`). An optional field left out takes its default (``None``: automatic). The
+``[wave]``, ``[paddle]``, ``gauges = [{...}, ...]``, ``[runup]``, ``[viscosity]``). Where a
+field takes one of several classes (beach, wave, paddle, each gauge, a numerical model) the table
+names it with its own ``type`` key (:data:`TAGS`); a numerical model may also be given by its
+name alone (``viscosity = "laminar"``: the core's parameters). An optional field left out takes
+its default (``None``: automatic; for a numerical parameter, the core's). The
 ``[output]`` table (:class:`OutputOptions`) says what ``watersim run`` writes.
 
 The file is read with :mod:`tomllib` and turned into builder objects field by field along the
@@ -45,23 +47,13 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-from . import overrides
+from . import flume, overrides
+from . import numerics as nm
 from ._core import SceneError
-from . import flume
-from .flume import FlumeScene, MeshBeach
+from .checks import _positive
 from .errors import did_you_mean
-from .scenes import (
-    BOUNDARY_MODELS,
-    DIFFUSION_MODELS,
-    FORCE_PRECISIONS,
-    INTEGRATORS,
-    KERNELS,
-    VISCOSITY_MODELS,
-    DamBreak,
-    SceneBuilder,
-    Tank,
-    _positive,
-)
+from .flume import FlumeScene, MeshBeach
+from .scenes import DamBreak, SceneBuilder, Tank
 
 __all__ = [
     "SCENE_TYPES",
@@ -87,12 +79,9 @@ SCENE_TYPES: dict[str, type[SceneBuilder]] = {
 """The top-level ``type`` of a scene file and the builder it makes."""
 
 CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
-    (SceneBuilder, "kernel"): KERNELS,
-    (SceneBuilder, "viscosity"): VISCOSITY_MODELS,
-    (SceneBuilder, "diffusion"): DIFFUSION_MODELS,
-    (SceneBuilder, "integrator"): INTEGRATORS,
-    (SceneBuilder, "boundary"): BOUNDARY_MODELS,
-    (SceneBuilder, "force_precision"): FORCE_PRECISIONS,
+    **{(SceneBuilder, name): words for name, words in nm.CHOICES.items()},
+    **{(SceneBuilder, name): tuple(c.TAG for c in classes)
+       for name, classes in nm.OPTION_CLASSES.items() if classes[0].TAG},
     **flume.CHOICES,
 }
 """Allowed values of string fields, for the reference (the builders check them; the flume
@@ -213,9 +202,9 @@ def _object_fields(cls: type) -> Iterator[tuple[str, Any, bool]]:
             yield name, hint, in_sequence
 
 
-TAGS: dict[type, str] = flume.TAGS
+TAGS: dict[type, str] = {**flume.TAGS, **nm.TAGS}
 """The ``type`` key of a table whose field takes one of several classes (a beach, a wave, a
-paddle, a gauge): each model class's own ``TAG``."""
+paddle, a gauge, a numerical model): each model class's own ``TAG``."""
 
 
 # ------------------------------------------------------------------------------------------------
@@ -621,9 +610,28 @@ def _type_name(hint: Any) -> str:
     return str(hint)
 
 
+def _core_default_text(cls: type, name: str) -> str | None:
+    """The core's default of a builder field or an option's parameter, if it has one."""
+    if issubclass(cls, nm.Option):
+        key = f"{cls.FIELD}.{name}"
+    elif issubclass(cls, SceneBuilder) and name in SceneBuilder.CORE_KEYS:
+        key = name
+    else:
+        return None
+    try:
+        value = nm.core_default(key)
+    except KeyError:  # derived by the core (h_swl, boundary_layers): see the meaning
+        return None
+    if isinstance(value, dict):  # an option: its model, whose parameters are listed below
+        tag = value.get("model", value.get("scheme"))
+        return f'the core\'s: `"{tag}"`' if tag else None
+    return f"the core's: {_toml_literal(value)}"
+
+
 def _default_text(cls: type, f: dataclasses.Field[Any]) -> str:
     dim_defaults = getattr(cls, "_DIM_DEFAULTS", {})
-    per_dim = [f"{d}D: {_toml_literal(v[f.name])}" for d, v in sorted(dim_defaults.items())
+    hint = _hints(cls)[f.name]
+    per_dim = [f"{d}D: {_toml_literal(v[f.name], hint)}" for d, v in sorted(dim_defaults.items())
                if f.name in v]
     if per_dim:
         return ", ".join(per_dim)
@@ -634,14 +642,17 @@ def _default_text(cls: type, f: dataclasses.Field[Any]) -> str:
     if f.default is dataclasses.MISSING:
         return "**required**"
     if f.default is None:
-        return "automatic"
+        return _core_default_text(cls, f.name) or "automatic"
     return _toml_literal(f.default)
 
 
-def _toml_literal(value: Any) -> str:
+def _toml_literal(value: Any, hint: Any = Any) -> str:
     if isinstance(value, (tuple, list)):  # on one line (tomli-w writes one item per line)
         return "`[" + ", ".join(_toml_literal(v).strip("`") for v in value) + "]`"
-    text = tomli_w.dumps({"v": _plain(value, Any)}).strip()
+    text = tomli_w.dumps({"v": _plain(value, hint)}).strip()
+    if text.startswith("[v]"):  # a table: inline
+        pairs = [line.strip() for line in text.splitlines()[1:] if line.strip()]
+        return "`{ " + ", ".join(pairs) + " }`"
     return "`" + text[len("v = "):] + "`"
 
 
@@ -667,23 +678,26 @@ def _class_rows(cls: type, skip: tuple[str, ...] = ()) -> list[str]:
 def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     """(heading, note, class, fields to skip) of each table of the reference."""
     base = tuple(SceneBuilder.field_names())
-    cls: type
     yield ('`type = "dambreak"` (top level)', "", DamBreak, ())
+    yield from _object_sections(SceneBuilder, "")
     yield ('`type = "tank"` (top level)', "", Tank, ())
     yield ('`type = "flume"` (top level)',
            "The numerical fields are those of the dam break above, with the defaults below, "
            "except `energy_growth_limit`: the core's energy monitor does not run in a scene "
            "with a paddle, so a flume refuses it.",
-           FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "alpha", "boundary", "dp",
+           FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "boundary", "dp",
                                                           "until")) + ("energy_growth_limit",))
-    yield from _object_sections(FlumeScene, "")
+    yield from _object_sections(FlumeScene, "", skip=tuple(nm.OPTION_CLASSES))
     yield ("`[output]`", "", OutputOptions, ())
 
 
-def _object_sections(cls: type, path: str) -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
-    """The sections of the objects within ``cls`` (at ``path`` in the file), each followed by
-    those of the objects within it: one per class a field takes."""
+def _object_sections(cls: type, path: str, skip: tuple[str, ...] = ()
+                     ) -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
+    """The sections of the objects within ``cls`` (at ``path`` in the file; fields ``skip``
+    left out), each followed by those of the objects within it: one per class a field takes."""
     for name, hint, in_sequence in _object_fields(cls):
+        if name in skip:
+            continue
         key = _join(path, name)
         members = _dataclasses_in(hint)
         note = f"Or `{name} = true` / `false`." if bool in (_union_args(hint) or ()) else ""

@@ -12,133 +12,35 @@ wall surfaces sit exactly at x = 0, x = tank length, etc. Particles sit on a lat
 ``(i + 1/2) dp`` from the tank's min corner, so a fluid box ``[0, W]`` holds exactly ``W / dp``
 particles across when ``W / dp`` is a whole number.
 
-Default numerics, shared by every case, and why:
-
-- ``kernel="wendland"``, ``coefh=1.0``: Wendland C2 with ``h = coefh sqrt(dim) dp`` is the
-  DualSPHysics default; it does not suffer the pairing instability of the cubic spline.
-- ``coefsound=20``: ``c0 = 20 sqrt(g h_swl)`` keeps density variations near 0.25 % for the
-  hydrostatic column (Mach number about 0.05 for the fastest flow), the usual WCSPH choice.
-- ``gamma=7``: Tait equation of state for water (Monaghan 1994).
-- ``cfl=0.2``: the DualSPHysics default Courant number for the Monaghan & Kos (1999) time step.
-- ``viscosity="artificial"``, ``alpha=0.02``: Monaghan (1992) artificial viscosity, in the
-  0.01-0.1 range recommended for free-surface flows; a low value, since it also damps the
-  physical flow, but above 0.01 for the coarse resolutions the defaults run at. It is not tuned
-  to any data set.
-- ``diffusion="fourtakas"``, ``delta=0.1``: density diffusion of Fourtakas et al. (2019), which
-  removes the hydrostatic part of the density difference (so it does not pull a still tank
-  towards uniform density near the free surface). The hydrostatic part is taken in pressure,
-  ``(p_b - p_a - rho0 g z_ab) / c0^2``: zero for every pair of still water, where the paper's
-  density form (Eq. 13) adds density at depth and still water slowly expands (docs/wave-flume.md,
-  "The mean water level"); delta = 0.1 is the standard value
-  (Molteni & Colagrossi 2009; Antuono et al. 2010).
-- ``integrator="symplectic"``: second-order, time-reversible scheme, the DualSPHysics default.
-- ``rho0=1000`` kg/m^3, ``gravity=9.81`` m/s^2.
-- Stability monitors (docs/stability.md): ``density_band=0.5``, ``lost_fraction_limit=0.01``,
-  ``energy_growth_limit=0.05``, the core's own defaults (``crates/sph-core/src/scene/defaults.rs``):
-  loose enough that a healthy run never trips them, tight enough to stop a diverging one
-  within a few steps.
+Numerics: a parameter left ``None`` is not sent, and the core's default applies (the only
+defaults, ``crates/sph-core/src/scene/defaults.rs``; :meth:`SceneBuilder.core_value` reads the
+value a run uses). The dam break and the tank choose artificial viscosity 0.02
+(:data:`watersim.numerics.VERIFICATION`, with the reason); the options and the presets of every
+case are in :mod:`watersim.numerics`.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from . import _core
+from . import numerics as nm
 from ._core import SceneError
+from .checks import _choice, _integer, _non_negative, _positive
 
 if TYPE_CHECKING:
     from .simulation import Simulation
 
 __all__ = [
-    "DIFFUSION_MODELS",
-    "INTEGRATORS",
-    "BOUNDARY_MODELS",
-    "FORCE_PRECISIONS",
-    "KERNELS",
-    "VISCOSITY_MODELS",
     "DamBreak",
     "SceneBuilder",
     "Tank",
 ]
-
-KERNELS: tuple[str, ...] = ("wendland", "cubic_spline")
-"""Kernel names the core knows."""
-VISCOSITY_MODELS: tuple[str, ...] = ("artificial", "laminar", "laminar_sps")
-"""Viscosity models the core knows."""
-DIFFUSION_MODELS: tuple[str, ...] = ("none", "molteni", "fourtakas")
-"""Density diffusion terms the core knows."""
-INTEGRATORS: tuple[str, ...] = ("symplectic", "verlet")
-"""Time integration schemes the core knows."""
-BOUNDARY_MODELS: tuple[str, ...] = ("dbc", "adami")
-"""Wall boundary models the core knows: ``"dbc"``, the dynamic boundary condition (Crespo et
-al. 2007; wall particles integrate continuity); ``"adami"``, Adami, Hu & Adams (2012; wall
-particles take the pressure extrapolated from their fluid neighbours at every step)."""
-
-FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
-"""Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
-register instead of four, as DualSPHysics forms its forces; the state stays f64). Not with
-``viscosity="laminar_sps"``, whose loop is f64 only. ``ForcePrecision`` in
-``crates/sph-core/src/scene/numerics.rs``; docs/benchmarks.md measures speed and accuracy."""
-
-MAX_DENSITY_BAND = 1.0
-"""Largest ``density_band`` accepted: the band ``rho0 (1 -+ density_band)`` then reaches
-density 0, and a wider one bounds nothing below."""
-
-MAX_ENERGY_GROWTH_LIMIT = 1.0
-"""Largest ``energy_growth_limit`` accepted: an unforced fluid whose mechanical energy grew by its
-whole initial potential energy is no solution any more, so a looser monitor would never stop a
-run that needs stopping."""
-
-MIN_COEFH = 0.5
-"""Smallest ``coefh`` accepted. The core sizes its cell grid by h and does not bound the cell
-count, so a tiny coefh makes it panic or abort on allocation (a core gap, see
-docs/stability.md); DualSPHysics' cases use 0.75-2."""
-
-
-# ------------------------------------------------------------------------------------------------
-# Field checks. Each raises SceneError("field: reason").
-
-
-def _number(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(f"{name}: expected a number, got {value!r}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise SceneError(f"{name}: must be a finite number, got {value!r}")
-    return v
-
-
-def _positive(name: str, value: Any) -> float:
-    v = _number(name, value)
-    if v <= 0.0:
-        raise SceneError(f"{name}: must be positive, got {value!r}")
-    return v
-
-
-def _non_negative(name: str, value: Any) -> float:
-    v = _number(name, value)
-    if v < 0.0:
-        raise SceneError(f"{name}: must not be negative, got {value!r}")
-    return v
-
-
-def _integer(name: str, value: Any, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise SceneError(f"{name}: expected an integer, got {value!r}")
-    if value < minimum:
-        raise SceneError(f"{name}: must be at least {minimum}, got {value!r}")
-    return value
-
-
-def _choice(name: str, value: Any, allowed: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in allowed:
-        options = ", ".join(repr(a) for a in allowed)
-        raise SceneError(f"{name}: unknown value {value!r}; allowed: {options}")
-    return value
-
 
 def _resolution(name: str, extent: float, dp: float, what: str) -> None:
     """Refuse a dp that leaves fewer than 2 particles across a fluid extent."""
@@ -148,43 +50,45 @@ def _resolution(name: str, extent: float, dp: float, what: str) -> None:
         )
 
 
+def _at_most(name: str, value: Any, limit: float, why: str) -> None:
+    """Refuse a set number above ``limit`` (after the caller's own check of its sign)."""
+    if value is not None and value > limit:
+        raise SceneError(f"{name}: must be at most {limit:g} ({why}), got {value!r}")
+
+
 # ------------------------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True, kw_only=True)
 class SceneBuilder:
-    """Parameters shared by every scene (see the module docstring for the defaults).
-
-    Fields set to ``None`` take a default that depends on ``dim`` (``_DIM_DEFAULTS``), filled in
-    when the builder is created.
+    """Parameters shared by every scene. A numerical or physical parameter left ``None`` takes
+    the core's default (``watersim._core.scene_defaults()``); ``dp``, ``until`` and the
+    geometry fields set to ``None`` take the builder's default for ``dim`` (``_DIM_DEFAULTS``),
+    filled in when the builder is created, as do the case's chosen numerics
+    (:mod:`watersim.numerics`).
 
     Attributes:
         dim: 2 or 3.
         dp: initial particle spacing [m].
         kernel: ``"wendland"`` (Wendland C2) or ``"cubic_spline"``.
-        coefh: ``h = coefh * sqrt(dim) * dp`` [-].
+        coefh: ``h = coefh * sqrt(dim) * dp`` [-], at least 0.5.
         coefsound: ``c0 = coefsound * sqrt(g * h_swl)`` [-].
         gamma: Tait exponent [-].
-        cfl: Courant number of the variable time step [-].
-        viscosity: ``"artificial"``, ``"laminar"`` or ``"laminar_sps"``.
-        alpha: artificial viscosity coefficient [-] (``viscosity="artificial"``).
-        nu: kinematic viscosity [m^2/s] (laminar models).
-        cs: Smagorinsky constant [-] (``"laminar_sps"``).
-        ci: Blin constant [-] (``"laminar_sps"``).
-        diffusion: density diffusion ``"none"``, ``"molteni"`` or ``"fourtakas"``.
-        delta: density diffusion coefficient [-].
-        integrator: ``"symplectic"`` or ``"verlet"``.
-        euler_every: Verlet: one Euler step every this many steps.
-        boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see :data:`BOUNDARY_MODELS`
-            and ``Boundary`` in ``crates/sph-core/src/scene/numerics.rs``).
+        cfl: Courant number of the variable time step [-], at most 1.
+        viscosity: :class:`~watersim.numerics.Artificial`,
+            :class:`~watersim.numerics.Laminar` or :class:`~watersim.numerics.LaminarSps`
+            (or a model's name, ``"laminar"``, with the core's parameters).
+        diffusion: density diffusion, :class:`~watersim.numerics.NoDiffusion`,
+            :class:`~watersim.numerics.Molteni` or :class:`~watersim.numerics.Fourtakas`
+            (or ``"none"``, ``"molteni"``, ``"fourtakas"``).
+        integrator: :class:`~watersim.numerics.Symplectic` or
+            :class:`~watersim.numerics.Verlet` (or ``"symplectic"``, ``"verlet"``).
+        boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see
+            :data:`~watersim.numerics.BOUNDARY_MODELS`).
         force_precision: arithmetic of the force loop's pair terms, ``"f64"`` or ``"f32"``
-            (see :data:`FORCE_PRECISIONS`).
-        shifting: particle shifting's coefficient ``A`` [-] (Lind et al. 2012 with Skillen et
-            al. 2013's ``D = A h |u| dt``; 2 is DualSPHysics' value, 1-6 the proposed range);
-            ``None``: no shifting. See ``Shifting`` in ``crates/sph-core/src/scene/numerics.rs``.
-        shifting_threshold: particle divergence at and below which a particle counts as on
-            the free surface and is not shifted [-], in (0, dim); ``None``: 1.5 in 2D, 2.75
-            in 3D. Only with ``shifting``.
+            (see :data:`~watersim.numerics.FORCE_PRECISIONS`).
+        shifting: particle shifting, a :class:`~watersim.numerics.Shifting` (or its
+            coefficient alone); ``None``: no shifting.
         rho0: reference density [kg/m^3].
         gravity: gravitational acceleration [m/s^2], acting along -z.
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
@@ -203,35 +107,34 @@ class SceneBuilder:
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {}
     THREE_D_ONLY: ClassVar[tuple[str, ...]] = ()
     """Fields that only mean something in 3D (must stay ``None`` in 2D)."""
+    CORE_KEYS: ClassVar[tuple[str, ...]] = (
+        "kernel", "coefh", "coefsound", "gamma", "cfl", "viscosity", "diffusion", "integrator",
+        "boundary", "force_precision", "shifting", "rho0", "gravity", "h_swl", "boundary_layers",
+        "density_band", "lost_fraction_limit", "energy_growth_limit",
+    )
+    """The fields sent to the core under their own name when set (None: not sent)."""
 
     dim: int = 2
     dp: float | None = None
-    kernel: str = "wendland"
-    coefh: float = 1.0
-    coefsound: float = 20.0
-    gamma: float = 7.0
-    cfl: float = 0.2
-    viscosity: str = "artificial"
-    alpha: float = 0.02
-    nu: float = 1.0e-6
-    cs: float = 0.12
-    ci: float = 0.0066
-    diffusion: str = "fourtakas"
-    delta: float = 0.1
-    integrator: str = "symplectic"
-    euler_every: int = 40
-    boundary: str = "dbc"
-    force_precision: str = "f64"
-    shifting: float | None = None
-    shifting_threshold: float | None = None
-    rho0: float = 1000.0
-    gravity: float = 9.81
+    kernel: str | None = None
+    coefh: float | None = None
+    coefsound: float | None = None
+    gamma: float | None = None
+    cfl: float | None = None
+    viscosity: nm.Artificial | nm.Laminar | nm.LaminarSps | str | None = None
+    diffusion: nm.NoDiffusion | nm.Molteni | nm.Fourtakas | str | None = None
+    integrator: nm.Symplectic | nm.Verlet | str | None = None
+    boundary: str | None = None
+    force_precision: str | None = None
+    shifting: nm.Shifting | float | None = None
+    rho0: float | None = None
+    gravity: float | None = None
     h_swl: float | None = None
     boundary_layers: int | None = None
     until: float | None = None
-    density_band: float = 0.5
-    lost_fraction_limit: float = 0.01
-    energy_growth_limit: float = 0.05
+    density_band: float | None = None
+    lost_fraction_limit: float | None = None
+    energy_growth_limit: float | None = None
 
     _ENERGY_MONITOR: ClassVar[bool] = True
     """Whether the core's energy monitor runs for this scene (it skips scenes with a paddle,
@@ -244,6 +147,8 @@ class SceneBuilder:
         for key, value in self._DIM_DEFAULTS.get(self.dim, {}).items():
             if getattr(self, key) is None:
                 object.__setattr__(self, key, value)
+        for name in nm.OPTION_CLASSES:
+            object.__setattr__(self, name, nm.option(name, getattr(self, name)))
         self.validate()
 
     # -- checks ---------------------------------------------------------------------------------
@@ -253,137 +158,96 @@ class SceneBuilder:
         if isinstance(self.dim, bool) or self.dim not in (2, 3):
             raise SceneError(f"dim: must be 2 or 3, got {self.dim!r}")
         _positive("dp", self.dp)
-        _choice("kernel", self.kernel, KERNELS)
-        if _positive("coefh", self.coefh) < MIN_COEFH:
-            raise SceneError(
-                f"coefh: must be at least {MIN_COEFH} (h = coefh sqrt(dim) dp), got "
-                f"{self.coefh!r}: a smaller h reaches no more than the nearest neighbours, and "
-                "the core's cell grid (cells of size h) outgrows memory"
-            )
-        _positive("coefsound", self.coefsound)
-        _positive("gamma", self.gamma)
-        cfl = _positive("cfl", self.cfl)
-        if cfl > 1.0:
-            raise SceneError(f"cfl: must be at most 1, got {self.cfl!r}")
-        _choice("viscosity", self.viscosity, VISCOSITY_MODELS)
-        _non_negative("alpha", self.alpha)
-        _non_negative("nu", self.nu)
-        _non_negative("cs", self.cs)
-        _non_negative("ci", self.ci)
-        _choice("diffusion", self.diffusion, DIFFUSION_MODELS)
-        _non_negative("delta", self.delta)
-        _choice("integrator", self.integrator, INTEGRATORS)
-        _integer("euler_every", self.euler_every, 1)
-        _choice("boundary", self.boundary, BOUNDARY_MODELS)
-        _choice("force_precision", self.force_precision, FORCE_PRECISIONS)
-        if self.force_precision == "f32" and self.viscosity == "laminar_sps":
-            raise SceneError(
-                "force_precision: f32 pair terms exist in the batched force loop only; the "
-                "laminar_sps closure runs the f64 loop, so use f64"
-            )
-        if self.shifting is not None:
-            _positive("shifting", self.shifting)
-        if self.shifting_threshold is not None:
-            if self.shifting is None:
-                raise SceneError(
-                    "shifting_threshold: only means something with particle shifting on; set "
-                    "shifting (its coefficient, e.g. 2) or leave the threshold unset"
-                )
-            if not 0.0 < _positive("shifting_threshold", self.shifting_threshold) < self.dim:
-                raise SceneError(
-                    f"shifting_threshold: must lie strictly between 0 and dim = {self.dim} (the "
-                    f"particle divergence inside the water), got {self.shifting_threshold!r}"
-                )
-        _positive("rho0", self.rho0)
-        _positive("gravity", self.gravity)
+        self._validate_numerics()
+        self._validate_monitors()
         if self.h_swl is not None:
             _positive("h_swl", self.h_swl)
         if self.boundary_layers is not None:
             _integer("boundary_layers", self.boundary_layers, 1)
         _positive("until", self.until)
-        self._validate_monitors()
         self._validate_geometry()
 
+    def _validate_numerics(self) -> None:
+        """The numerical parameters that are set (the options check their own)."""
+        for name in ("kernel", "boundary", "force_precision"):
+            if getattr(self, name) is not None:
+                _choice(name, getattr(self, name), nm.CHOICES[name])
+        if self.coefh is not None and _positive("coefh", self.coefh) < nm.MIN_COEFH:
+            raise SceneError(
+                f"coefh: must be at least {nm.MIN_COEFH} (h = coefh sqrt(dim) dp), got "
+                f"{self.coefh!r}: a smaller h reaches no more than the nearest neighbours, and "
+                "the core's cell grid (cells of size h) outgrows memory"
+            )
+        for name in ("coefsound", "gamma", "cfl", "rho0", "gravity"):
+            if getattr(self, name) is not None:
+                _positive(name, getattr(self, name))
+        _at_most("cfl", self.cfl, 1.0, "a Courant number")
+        if self.force_precision == "f32" and isinstance(self.viscosity, nm.LaminarSps):
+            raise SceneError(
+                "force_precision: f32 pair terms exist in the batched force loop only; the "
+                "laminar_sps closure runs the f64 loop, so use f64"
+            )
+        if isinstance(self.shifting, nm.Shifting):
+            self.shifting.check_dim(self.dim)
+
     def _validate_monitors(self) -> None:
-        """The stability monitor thresholds (ranges: docs/stability.md, the constants above)."""
-        if _positive("density_band", self.density_band) > MAX_DENSITY_BAND:
-            raise SceneError(
-                f"density_band: must be at most {MAX_DENSITY_BAND:g} (the band rho0 (1 -+ "
-                f"density_band) then reaches zero density), got {self.density_band!r}"
-            )
-        if _non_negative("lost_fraction_limit", self.lost_fraction_limit) > 1.0:
-            raise SceneError(
-                f"lost_fraction_limit: must be at most 1 (a fraction of the fluid), got "
-                f"{self.lost_fraction_limit!r}"
-            )
+        """The stability monitor thresholds that are set (ranges: docs/stability.md)."""
+        if self.density_band is not None:
+            _positive("density_band", self.density_band)
+            _at_most("density_band", self.density_band, nm.MAX_DENSITY_BAND,
+                     "the band rho0 (1 -+ density_band) then reaches zero density")
+        if self.lost_fraction_limit is not None:
+            _non_negative("lost_fraction_limit", self.lost_fraction_limit)
+            _at_most("lost_fraction_limit", self.lost_fraction_limit, 1.0,
+                     "a fraction of the fluid")
+        if self.energy_growth_limit is None:
+            return
         if not self._ENERGY_MONITOR:
-            if self.energy_growth_limit is not None:
-                raise SceneError(
-                    "energy_growth_limit: the core's energy monitor does not run in a scene with "
-                    "a paddle; leave it unset"
-                )
-        elif _positive("energy_growth_limit", self.energy_growth_limit) > MAX_ENERGY_GROWTH_LIMIT:
             raise SceneError(
-                f"energy_growth_limit: must be at most {MAX_ENERGY_GROWTH_LIMIT:g} (a growth by "
-                f"the whole initial potential energy), got {self.energy_growth_limit!r}"
+                "energy_growth_limit: the core's energy monitor does not run in a scene with "
+                "a paddle; leave it unset"
             )
+        _positive("energy_growth_limit", self.energy_growth_limit)
+        _at_most("energy_growth_limit", self.energy_growth_limit, nm.MAX_ENERGY_GROWTH_LIMIT,
+                 "a growth by the whole initial potential energy")
 
     def _validate_geometry(self) -> None:  # pragma: no cover - overridden
         raise NotImplementedError
 
     # -- scene ----------------------------------------------------------------------------------
 
+    def core_value(self, name: str) -> Any:
+        """The value of a core parameter a run uses: this builder's, else the core's default
+        (``core_value("gravity")``, ``core_value("coefh")``)."""
+        value = getattr(self, name)
+        return nm.core_default(name) if value is None else value
+
+    @property
+    def g(self) -> float:
+        """Gravitational acceleration a run uses [m/s^2]: ``gravity``, else the core's."""
+        return float(self.core_value("gravity"))
+
     @property
     def smoothing_length(self) -> float:
         """``h = coefh * sqrt(dim) * dp`` [m]."""
         assert self.dp is not None
-        return self.coefh * math.sqrt(self.dim) * self.dp
+        return float(self.core_value("coefh")) * math.sqrt(self.dim) * self.dp
 
     def _physics(self) -> dict[str, Any]:
-        """The scene keys that do not describe geometry."""
-        if self.viscosity == "artificial":
-            viscosity: dict[str, Any] = {"model": "artificial", "alpha": float(self.alpha)}
-        elif self.viscosity == "laminar":
-            viscosity = {"model": "laminar", "nu": float(self.nu)}
-        else:
-            viscosity = {
-                "model": "laminar_sps",
-                "nu": float(self.nu),
-                "cs": float(self.cs),
-                "ci": float(self.ci),
-            }
-        diffusion: dict[str, Any] = {"model": self.diffusion}
-        if self.diffusion != "none":
-            diffusion["delta"] = float(self.delta)
-        integrator: dict[str, Any] = {"scheme": self.integrator}
-        if self.integrator == "verlet":
-            integrator["euler_every"] = int(self.euler_every)
-        physics: dict[str, Any] = {
-            "dim": int(self.dim),
-            "dp": float(self.dp),  # type: ignore[arg-type]
-            "gravity": float(self.gravity),
-            "rho0": float(self.rho0),
-            "kernel": self.kernel,
-            "coefh": float(self.coefh),
-            "coefsound": float(self.coefsound),
-            "gamma": float(self.gamma),
-            "h_swl": None if self.h_swl is None else float(self.h_swl),
-            "cfl": float(self.cfl),
-            "viscosity": viscosity,
-            "diffusion": diffusion,
-            "integrator": integrator,
-            "boundary": {"model": self.boundary},
-            "force_precision": self.force_precision,
-            "shifting": None if self.shifting is None else {
-                "coefficient": float(self.shifting),
-                "surface_threshold": (None if self.shifting_threshold is None
-                                      else float(self.shifting_threshold)),
-            },
-            "density_band": float(self.density_band),
-            "lost_fraction_limit": float(self.lost_fraction_limit),
-        }
-        if self._ENERGY_MONITOR:
-            physics["energy_growth_limit"] = float(self.energy_growth_limit)
+        """The scene keys that do not describe geometry: those set, in the core's form."""
+        physics: dict[str, Any] = {"dim": int(self.dim), "dp": float(self.dp)}  # type: ignore[arg-type]
+        for name in self.CORE_KEYS:
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if isinstance(value, nm.Option):
+                physics[name] = value.to_core()
+            elif name == "boundary":
+                physics[name] = {"model": value}
+            elif isinstance(value, str):
+                physics[name] = value
+            else:
+                physics[name] = int(value) if name == "boundary_layers" else float(value)
         return physics
 
     def to_scene(self) -> dict[str, Any]:
@@ -391,11 +255,15 @@ class SceneBuilder:
         self.validate()
         scene = self._physics()
         scene.update(self._geometry())
-        scene["boundary_layers"] = self.boundary_layers
         return scene
 
     def _geometry(self) -> dict[str, Any]:  # pragma: no cover - overridden
         raise NotImplementedError
+
+    def resolved_scene(self) -> dict[str, Any]:
+        """The scene as the core runs it: :meth:`to_scene` with every default filled in by the
+        core (``watersim._core.resolve_scene``)."""
+        return json.loads(_core.resolve_scene(json.dumps(self.to_scene())))
 
     def build(self) -> Simulation:
         """Build the particles: a ready :class:`~watersim.Simulation`."""
@@ -413,8 +281,12 @@ class SceneBuilder:
         return tuple(f.name for f in dataclasses.fields(cls))
 
     def as_dict(self) -> dict[str, Any]:
-        """The builder's fields as a plain dict."""
-        return dataclasses.asdict(self)
+        """The builder's fields as a plain dict (an option as its scene-file table)."""
+        out = dataclasses.asdict(self)
+        for name in nm.OPTION_CLASSES:
+            value = getattr(self, name)
+            out[name] = value.to_table() if isinstance(value, nm.Option) else value
+        return out
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -444,8 +316,8 @@ class DamBreak(SceneBuilder):
 
     THREE_D_ONLY: ClassVar[tuple[str, ...]] = ("tank_width",)
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
-        2: {"dp": 0.025, "until": 0.7},
-        3: {"dp": 0.1, "until": 0.7, "tank_width": 0.5},
+        2: {"dp": 0.025, "until": 0.7, **nm.VERIFICATION},
+        3: {"dp": 0.1, "until": 0.7, "tank_width": 0.5, **nm.VERIFICATION},
     }
 
     width: float = 1.0
@@ -513,8 +385,10 @@ class Tank(SceneBuilder):
 
     THREE_D_ONLY: ClassVar[tuple[str, ...]] = ("width",)
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
-        2: {"dp": 0.025, "until": 2.0, "length": 1.0, "depth": 0.5, "height": 0.7},
-        3: {"dp": 0.05, "until": 2.0, "length": 0.6, "depth": 0.3, "height": 0.4, "width": 0.3},
+        2: {"dp": 0.025, "until": 2.0, "length": 1.0, "depth": 0.5, "height": 0.7,
+            **nm.VERIFICATION},
+        3: {"dp": 0.05, "until": 2.0, "length": 0.6, "depth": 0.3, "height": 0.4, "width": 0.3,
+            **nm.VERIFICATION},
     }
 
     length: float | None = None

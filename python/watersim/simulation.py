@@ -40,19 +40,18 @@ class Simulation:
     Raises:
         SceneError: the core refused the scene (message ``field.path: reason``).
 
+    Attributes:
+        scene: the scene as the core runs it, every default filled in by the core.
+
     Array properties (``positions``, ``velocities``, ``densities``, ``pressures``, ``kinds``,
     ``ids``) are read-only views in the solver's storage order, valid until the next
     :meth:`step` or :meth:`run`: copy what you keep.
     """
 
     def __init__(self, scene: Mapping[str, Any] | str) -> None:
-        if isinstance(scene, str):
-            scene_json = scene
-            self.scene: dict[str, Any] = json.loads(scene)
-        else:
-            self.scene = dict(scene)
-            scene_json = json.dumps(self.scene)
+        scene_json = scene if isinstance(scene, str) else json.dumps(dict(scene))
         self._sim = _core.Simulation(scene_json)
+        self.scene: dict[str, Any] = json.loads(_core.resolve_scene(scene_json))
 
     # -- pass-through ---------------------------------------------------------------------------
 

@@ -43,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from . import numerics as nm
 from ._jsonio import write_json_atomic
 from .errors import CliError
 from .runrecord import STRESS_FIELDS, instability_fields, measure, run_record
@@ -487,17 +488,17 @@ def full_matrix() -> list[RunSpec]:
         RunSpec("violent", "steep_wave_miche0.9", "flume",
                 {"wave": "regular", "height": 0.154, "period": 1.0, "order": 2,
                  "ramp_periods": 2.0, "length": 5.5, "depth": 0.3, "dp": 0.025,
-                 "coefsound": 10.0, "gauges": [1.37, 2.74]}, 6.0, 0.01),
+                 **nm.FLUME_CASE, "gauges": [1.37, 2.74]}, 6.0, 0.01),
         # d = 0.2 m, T = 2 s, H = 0.14 m (H/d = 0.7, 0.84 of Miche) onto a 1:15 beach
         RunSpec("violent", "beach_wave_Hd0.7", "flume",
                 {"wave": "regular", "height": 0.14, "period": 2.0, "order": 1,
                  "ramp_periods": 1.0, "length": 6.0, "depth": 0.2, "toe": 2.0,
-                 "slope": 1.0 / 15.0, "dp": 0.02, "coefsound": 10.0, "gauges": [1.0, 3.5],
+                 "slope": 1.0 / 15.0, "dp": 0.02, **nm.FLUME_CASE, "gauges": [1.0, 3.5],
                  "runup": True}, 9.0, 0.01),
         # solitary2d's beach (Synolakis 1:19.85), H/d = 0.3, shortened
         RunSpec("violent", "solitary_runup", "flume",
                 {"wave": "solitary", "height": 0.09, "length": 11.0, "depth": 0.3, "toe": 4.0,
-                 "slope": 1.0 / 19.85, "dp": 0.03, "coefsound": 10.0,
+                 "slope": 1.0 / 19.85, "dp": 0.03, **nm.FLUME_CASE,
                  "gauges": [2.0, 6.0, 8.0, 9.5], "runup": True}, 8.0, 0.01),
     ]
     specs.append(RunSpec("long", "still_tank_20s", "tank",
@@ -518,7 +519,8 @@ def _dissipation(height_over_dp: float, until: float) -> list[RunSpec]:
         for diffusion in ("fourtakas", "none"):
             specs.append(RunSpec(
                 "dissipation", f"alpha{alpha}_{diffusion}", "dambreak",
-                _dambreak(height_over_dp, alpha=alpha, diffusion=diffusion, delta=0.1),
+                _dambreak(height_over_dp, viscosity={"type": "artificial", "alpha": alpha},
+                          diffusion=diffusion),
                 until, 0.005))
     return specs
 
@@ -542,10 +544,10 @@ def quick_matrix() -> list[RunSpec]:
         RunSpec("violent", "steep_wave_miche0.9", "flume",
                 {"wave": "regular", "height": 0.154, "period": 1.0, "order": 2,
                  "ramp_periods": 1.0, "length": 4.0, "depth": 0.3, "dp": 0.05,
-                 "coefsound": 10.0, "gauges": [1.37]}, 3.0, 0.02),
+                 **nm.FLUME_CASE, "gauges": [1.37]}, 3.0, 0.02),
         RunSpec("violent", "solitary_runup", "flume",
                 {"wave": "solitary", "height": 0.09, "length": 11.0, "depth": 0.3, "toe": 4.0,
-                 "slope": 1.0 / 19.85, "dp": 0.06, "coefsound": 10.0, "gauges": [2.0, 8.0],
+                 "slope": 1.0 / 19.85, "dp": 0.06, **nm.FLUME_CASE, "gauges": [2.0, 8.0],
                  "runup": True}, 6.0, 0.02),
     ]
     specs.append(RunSpec("long", "still_tank_5s", "tank",
@@ -820,7 +822,7 @@ def write_report(
         if group == "stiffness":
             lines += _stiffness_section(runs, png)
         elif group == "dissipation":
-            cols = [("alpha", lambda r: _fmt(r["params"].get("alpha"))),
+            cols = [("alpha", lambda r: _fmt(r["params"]["viscosity"]["alpha"])),
                     ("diffusion", lambda r: str(r["params"].get("diffusion")))]
             lines += _table(runs, cols + _common_columns())
         elif group == "long":

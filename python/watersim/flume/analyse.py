@@ -334,7 +334,7 @@ def _breaking(run: _Run, means: Sequence[float | None],
     """Where and how the waves break on the beach: the gauges' H/d criterion, where the mean
     wave height ``means`` peaks, the incident Iribarren number and the overturns seen."""
     setup, gauges, t, eta, notes, T = run.setup, run.gauges, run.t, run.eta, run.notes, run.period
-    depth, g, law = run.depth, setup.gravity, run.law
+    depth, g, law = run.depth, setup.g, run.law
     slope = setup.beach_slope
     breaking: dict[str, Any] = {}
     sel = t >= (law.ramp_duration if run.t_start is None else run.t_start)
@@ -457,7 +457,7 @@ def _reflection(run: _Run) -> dict[str, Any] | None:
     """The reflection coefficient from two (Goda & Suzuki 1976) or three (Mansard & Funke
     1980) gauges over the flat floor, or None (with a note) without a usable set."""
     gauges, t, eta, notes, depth, g = (run.gauges, run.t, run.eta, run.notes, run.depth,
-                                       run.setup.gravity)
+                                       run.setup.g)
     T = run.period
     assert T is not None
     knum = 2.0 * math.pi / float(wt.wavelength(T, depth, g))

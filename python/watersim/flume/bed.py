@@ -15,7 +15,7 @@ import numpy.typing as npt
 
 from .. import meshbed
 from .._core import SceneError
-from ..scenes import _non_negative, _positive
+from ..checks import _non_negative, _positive
 from .checks import _TOL, _finite_tuple, _set, _strictly_increasing
 
 if TYPE_CHECKING:

@@ -12,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .._core import SceneError
-from ..scenes import _choice, _integer, _number, _positive
+from ..checks import _choice, _integer, _number, _positive
 from .checks import _TOL, _finite_tuple, _optional_name, _set
 
 if TYPE_CHECKING:

@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from .. import wave_theory as wt
 from .._core import SceneError
-from ..scenes import _choice, _non_negative
+from ..checks import _choice, _non_negative
 from .checks import _set
 
 RAMPS: tuple[str, ...] = ("linear", "tanh")

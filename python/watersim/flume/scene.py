@@ -12,9 +12,11 @@ from typing import Any, ClassVar
 import numpy as np
 import numpy.typing as npt
 
+from .. import numerics as nm
 from .. import wave_theory as wt
 from .._core import SceneError
-from ..scenes import SceneBuilder, _positive
+from ..checks import _positive
+from ..scenes import SceneBuilder
 from .bed import BEACH_TYPES, Beach, DampingZone, _bed, _shoreline_segment
 from .checks import _TOL, _set, expected
 from .gauges import RUNUP_OFFSET_DP, SCENE_GAUGE_TYPES, Gauge, RunupGauge
@@ -155,35 +157,16 @@ class FlumeScene(SceneBuilder):
         energy_growth_limit: not used: the core's energy monitor skips scenes with a paddle
             (``density_band`` and ``lost_fraction_limit`` do apply); must stay unset.
 
-    Numerical defaults differ from the dam break's in three fields, all for wave propagation:
-
-    - ``coefh = 1.5`` in 2D, 1.2 in 3D (``h = 2.1 dp`` in both; DualSPHysics' 3D wave cases
-      use 1.2): at coarse resolution it carries a regular wave much further than
-      ``coefh = 1`` (measured here in 2D, d = 0.3 m, T = 1.2 s, H = 0.06 m, dp = 0.02 m,
-      H/dp = 3: wave height at one wavelength 92 % of the target against 79 % with
-      ``coefh = 1``; ``coefh = 2`` gives the same 92 % at twice the cost). The time step grows
-      with h, which pays back most of the extra neighbours in 2D.
-    - ``alpha = 0.01``: the artificial viscosity of seed 001 (Roselli et al., Table 2) and of
-      DualSPHysics wave cases (Altomare et al. 2017); waves are less damped than with 0.02.
-    - ``boundary = "adami"`` (Adami et al. 2012; the dam break keeps DBC): a DBC wall's
-      density remembers the water it has seen, so a crest cannot climb a wall that started
-      dry and the waterline on a wall is pumped down (docs/wave-flume.md, "Walls that
-      remember"). Measured: flume3d's wave at a side wall had 25 % of its height with DBC and
-      the same height as on the centre line with Adami's walls; flume2d at H/dp = 5 keeps
-      98 % / 95 % / 92 % of the height at 1 / 2 / 3 L instead of 94 % / 91 % / 88 %.
+    The numerics every flume chooses (``coefh`` by dimension and Adami's walls, for wave
+    propagation) are :data:`watersim.numerics.FLUME`, with the measurements behind them; the
+    rest is the core's (artificial viscosity 0.01, the value of seed 001 and of DualSPHysics'
+    wave cases).
     """
 
-    _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
-        2: {"coefh": 1.5},
-        3: {"coefh": 1.2},
-    }
+    _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = nm.FLUME
     _ENERGY_MONITOR: ClassVar[bool] = False  # every flume has a paddle
 
     dim: int | None = None  # type: ignore[assignment]
-    coefh: float | None = None  # type: ignore[assignment]
-    alpha: float = 0.01
-    boundary: str = "adami"
-    energy_growth_limit: float | None = None  # type: ignore[assignment]
     flume: Flume
     wave: Wave
     paddle: Paddle = dataclasses.field(default_factory=Piston)
@@ -222,7 +205,8 @@ class FlumeScene(SceneBuilder):
                 f"dim: {self.dim!r} does not match the flume ({self.flume.dim}D: width = "
                 f"{self.flume.width!r})"
             )
-        _positive("gravity", self.gravity)
+        if self.gravity is not None:
+            _positive("gravity", self.gravity)
         if self.dp is not None:
             _positive("dp", self.dp)
         if self.sample_interval is not None:
@@ -237,7 +221,7 @@ class FlumeScene(SceneBuilder):
         if self.until is None:
             _set(self, "until", self._default_until())
         super().__post_init__()
-        self.wave.warn(self.paddle, self.flume.depth, self.gravity)
+        self.wave.warn(self.paddle, self.flume.depth, self.g)
 
     # -- checks ---------------------------------------------------------------------------------
 
@@ -388,7 +372,7 @@ class FlumeScene(SceneBuilder):
         """Linear wavelength at the paddle depth [m] for the (peak) period, or None."""
         if self.period is None:
             return None
-        return float(wt.wavelength(self.period, self.flume.depth, self.gravity))
+        return float(wt.wavelength(self.period, self.flume.depth, self.g))
 
     @property
     def tank_height(self) -> float:
@@ -478,7 +462,7 @@ class FlumeScene(SceneBuilder):
         # an absurd wave overflows the theory's formulas: the non-finite excursion that results
         # is refused, naming the wave, by _validate_geometry
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            law = self.wave.law(self.paddle, self.flume.depth, self.gravity)
+            law = self.wave.law(self.paddle, self.flume.depth, self.g)
         if not self.paddle.absorbs(law, self.flume.beach is not None):
             return law
         extra = max(law.forward, law.backward)
@@ -514,7 +498,7 @@ class FlumeScene(SceneBuilder):
         return lattice_dp(depth, dp, self.flume.width)
 
     def _default_sample_interval(self) -> float:
-        return self.wave.default_sample_interval(self.flume.depth, self.gravity)
+        return self.wave.default_sample_interval(self.flume.depth, self.g)
 
     def _far_x(self) -> float:
         """Where the analysis needs waves: the last gauge, or the shoreline, or the flume end."""
@@ -535,7 +519,7 @@ class FlumeScene(SceneBuilder):
         otherwise; integrated along the bed, stopping where the depth falls below 1 % of the
         paddle depth (the shoreline).
         """
-        depth, g = self.flume.depth, self.gravity
+        depth, g = self.flume.depth, self.g
         xs = np.linspace(0.0, max(float(x), 0.0), 400)
         d_local = np.asarray(self.still_depth(xs))
         wet = d_local > 0.01 * depth

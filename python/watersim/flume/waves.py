@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from .. import wave_theory as wt
 from .._core import SceneError
-from ..scenes import _choice, _integer, _non_negative, _number, _positive
+from ..checks import _choice, _integer, _non_negative, _number, _positive
 from .checks import _finite_tuple, _set, _strictly_increasing
 from .paddles import Paddle, PaddleLaw
 
@@ -140,7 +140,7 @@ class RegularWave(_Wave):
         depth = scene.flume.depth
         return {
             "steepness": self.height / wavelength,
-            "ursell": float(wt.ursell_number(self.height, self.period, depth, scene.gravity)),
+            "ursell": float(wt.ursell_number(self.height, self.period, depth, scene.g)),
             "kd": 2.0 * math.pi / wavelength * depth,
         }
 
@@ -328,7 +328,7 @@ class SolitaryWave(_Wave):
     def default_until(self, scene: FlumeScene, far: float) -> float:
         """The motion, then the time to cross the flume and come back."""
         assert scene.law.duration is not None
-        c = float(wt.solitary_celerity(self.height, scene.flume.depth, scene.gravity))
+        c = float(wt.solitary_celerity(self.height, scene.flume.depth, scene.g))
         return self.delay + scene.law.duration + 2.0 * scene.flume.length / c
 
     def front_speed(self, depth: npt.NDArray[np.float64], g: float) -> npt.NDArray[np.float64]:
@@ -380,7 +380,7 @@ class TabulatedMotion(_Wave):
 
     def default_until(self, scene: FlumeScene, far: float) -> float:
         """The table's end plus one crossing at ``sqrt(g d)``."""
-        return self.t[-1] + scene.flume.length / math.sqrt(scene.gravity * scene.flume.depth)
+        return self.t[-1] + scene.flume.length / math.sqrt(scene.g * scene.flume.depth)
 
 
 Wave = RegularWave | IrregularWave | SolitaryWave | TabulatedMotion

@@ -28,8 +28,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .. import analysis as an
+from .. import numerics as nm
 from .. import wave_theory as wt
 from .._core import InstabilityError, SceneError
+from ..checks import _positive
 from ..flume import (
     DampingZone,
     ElevationGauge,
@@ -40,10 +42,10 @@ from ..flume import (
     RegularWave,
     lattice_dp,
 )
-from ..flume_cases import BEJI_BATTJES_FILES, FLUME2D_ALPHA, _load_csv, flume_builder
+from ..flume_cases import BEJI_BATTJES_FILES, _load_csv, flume_builder
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
 from ..runrecord import VALIDATION_FIELDS, run_record, stop_status
-from ..scenes import DamBreak, Tank, _positive
+from ..scenes import DamBreak, Tank
 from ..simulation import Simulation
 from . import metrics as m
 
@@ -278,7 +280,7 @@ def _run_tank(case: Case, res: float, quick: bool, progress: bool) -> dict[str, 
     sim = builder.build()
     status, message = advance(sim, until, until / 20.0, progress=progress,
                               label=f"{case.name} {res:g}")
-    depth, g, rho0 = builder.depth, builder.gravity, builder.rho0
+    depth, g, rho0 = builder.depth, builder.g, builder.core_value("rho0")
     z = np.arange(0.5 * dp, depth - 0.5 * dp + 1e-9, 0.5 * dp)
     pts = np.column_stack([np.full_like(z, 0.5 * builder.length), z])
     p = sim.interpolate(pts)["pressure"]
@@ -366,7 +368,7 @@ def _run_dambreak(case: Case, res: float, quick: bool, progress: bool) -> dict[s
             heights.append(water_column_height(pos, dp))
 
     status, message = advance(sim, until, 0.01, sample, progress, f"{case.name} {res:g}")
-    errors, details = _front_errors(times, fronts, builder.width, builder.gravity,
+    errors, details = _front_errors(times, fronts, builder.width, builder.g,
                                     builder.tank_length)
     if dim == 2:
         # dambreak3d keeps its lethe front metrics only (its committed runs predate these)
@@ -375,11 +377,11 @@ def _run_dambreak(case: Case, res: float, quick: bool, progress: bool) -> dict[s
             if name != "lethe":
                 try:
                     details[f"front_rms_{name}"] = front_error(
-                        times, fronts, builder.width, builder.gravity, name,
+                        times, fronts, builder.width, builder.g, name,
                         builder.tank_length).rms_rel_error
                 except ValueError:
                     details[f"front_rms_{name}"] = None
-        h_err, h_details = _height_errors(times, heights, builder.width, builder.gravity,
+        h_err, h_details = _height_errors(times, heights, builder.width, builder.g,
                                           details.get("best_shift_s"))
         errors.update(h_err)
         details.update(h_details)
@@ -538,12 +540,13 @@ def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[st
     assert scene.period is not None and scene.wavelength is not None
     wl, period, height = scene.wavelength, scene.period, case.length
     depth = scene.flume.depth
+    resolved = scene.resolved_scene()
     by_x = {round(g["x"] / wl, 2): g for g in result["gauges"]}
     errors: dict[str, float | None] = {}
     details: dict[str, Any] = {"wavelength_linear": wl, "H_target": height, "notes": notes,
-                               "numerics": {k: getattr(scene, k) for k in (
-                                   "coefh", "coefsound", "alpha", "viscosity", "diffusion",
-                                   "delta", "integrator", "cfl")},
+                               "numerics": {k: resolved[k] for k in (
+                                   "coefh", "coefsound", "viscosity", "diffusion",
+                                   "integrator", "cfl")},
                                "analysis_notes": result.get("notes", [])}
     # every gauge, sorted by x: the height along the flume (docs/wave-flume.md's figure)
     gauges = sorted(result["gauges"], key=lambda g: g["x"])
@@ -568,7 +571,7 @@ def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[st
     xs = [g["x"] for g in result["gauges"] if g["name"] in phases]
     if len(xs) >= 2:
         lw = m.wavelength_from_phases(xs, [phases[n] for n in phases], 2 * math.pi / wl)
-        l3 = m.stokes3_wavelength(period, depth, height, scene.gravity)
+        l3 = m.stokes3_wavelength(period, depth, height, scene.g)
         details.update(wavelength_measured=lw, wavelength_stokes3=l3)
         errors["wavelength_linear"] = m.relative_error(lw, wl)
         errors["wavelength_stokes3"] = m.relative_error(lw, l3)
@@ -639,15 +642,14 @@ def secondorder_scene(dp: float, order: int, **numerics: Any) -> FlumeScene:
     Flat flume 2.75 L + a 1 L damping zone; gauges every L/4 from 0.5 to 2.5 L; two-period
     ramp; until = ramp + arrival at 2.5 L + 3.5 periods (2.5 periods of steady record at
     2.5 L); the numerics of the built-in flume2d (coefsound 10, alpha
-    :data:`~watersim.flume_cases.FLUME2D_ALPHA`, Verlet). ``numerics``: further
+    :data:`~watersim.numerics.FLUME2D_ALPHA`, Verlet). ``numerics``: further
     :class:`~watersim.SceneBuilder` fields.
     """
     d, period, height = (SECOND_ORDER_WAVE[k] for k in ("depth", "period", "height"))
     wl = float(wt.wavelength(period, d))
     flume = Flume(length=round(3.75 * wl, 3), depth=d, damping=DampingZone(length=round(wl, 3)))
     gauges = [ElevationGauge(round(n * wl, 3)) for n in SECOND_ORDER_GAUGES_L]
-    kwargs: dict[str, Any] = {"coefsound": 10.0, "alpha": FLUME2D_ALPHA,
-                              "integrator": "verlet", **numerics}
+    kwargs: dict[str, Any] = {**nm.FLUME_CASE, **nm.WAVE_CARRYING, **numerics}
     wave = RegularWave(height=height, period=period)
     paddle = Piston(order=order, ramp_periods=2.0)
     with warnings.catch_warnings():
@@ -798,7 +800,7 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
 
     def until(s: FlumeScene) -> float:
         assert s.law.duration is not None and s.shoreline is not None
-        c = float(wt.solitary_celerity(height, depth, s.gravity))
+        c = float(wt.solitary_celerity(height, depth, s.g))
         # Goring's motion is symmetric about the crest's release at half its duration; the
         # run-up peaks within about a second of the crest reaching the shoreline
         return 0.5 * s.law.duration + s.shoreline / c + 1.0

@@ -1,0 +1,477 @@
+"""The numerical options of a scene, one class per model, and the presets of the built-in cases.
+
+Each class mirrors one model of the core's options (``crates/sph-core/src/scene/numerics.rs``):
+it owns its parameters, their checks and its core form. Python keeps no default of its own for a
+core parameter: a parameter left ``None`` is absent from the scene the core reads, and the
+core's default applies (:func:`core_default`, read from ``watersim._core.scene_defaults()``;
+``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
+
+A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``shifting``) takes the
+option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``: that model with the
+core's parameters) or its scene-file table (``{"type": "laminar", "nu": 2e-6}``); a shifting
+coefficient alone may be given as a number. ``--set viscosity.alpha=0.03`` changes one parameter
+(:func:`from_settings`).
+
+The presets at the end are the numerics the built-in cases choose on purpose, with the reasons;
+they are the only numbers for core parameters on the Python side.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import typing
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from . import _core
+from ._core import SceneError
+from .checks import _integer, _non_negative, _positive
+from .errors import did_you_mean
+from .overrides import Override, OverrideError
+
+__all__ = [
+    "BOUNDARY_MODELS",
+    "CHOICES",
+    "FORCE_PRECISIONS",
+    "KERNELS",
+    "MAX_DENSITY_BAND",
+    "MAX_ENERGY_GROWTH_LIMIT",
+    "MIN_COEFH",
+    "DIFFUSIONS",
+    "FLUME",
+    "FLUME2D_ALPHA",
+    "FLUME_CASE",
+    "INTEGRATORS",
+    "OPTION_CLASSES",
+    "SETTABLE_PARAMETERS",
+    "TAGS",
+    "VERIFICATION",
+    "VISCOSITIES",
+    "WAVE_CARRYING",
+    "WATER",
+    "Artificial",
+    "Fourtakas",
+    "Laminar",
+    "LaminarSps",
+    "Molteni",
+    "NoDiffusion",
+    "Option",
+    "Shifting",
+    "Symplectic",
+    "Verlet",
+    "core_default",
+    "from_settings",
+    "option",
+    "option_keys",
+]
+
+
+@functools.cache
+def _defaults() -> dict[str, Any]:
+    return _core.scene_defaults()
+
+
+def core_default(key: str) -> Any:
+    """The core's default of a scene key, by its dotted path (``"gravity"``,
+    ``"viscosity.alpha"``, ``"viscosity.model"``)."""
+    node: Any = _defaults()
+    for part in key.split("."):
+        node = node[part]
+    return node
+
+
+# ------------------------------------------------------------------------------------------------
+# options named by a word, and ranges
+
+KERNELS: tuple[str, ...] = ("wendland", "cubic_spline")
+"""Kernel names the core knows (Wendland C2 does not suffer the cubic spline's pairing
+instability)."""
+
+BOUNDARY_MODELS: tuple[str, ...] = ("dbc", "adami")
+"""Wall boundary models the core knows: ``"dbc"``, the dynamic boundary condition (Crespo et
+al. 2007; wall particles integrate continuity); ``"adami"``, Adami, Hu & Adams (2012; wall
+particles take the pressure extrapolated from their fluid neighbours at every step)."""
+
+FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
+"""Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
+register instead of four, as DualSPHysics forms its forces; the state stays f64). Not with
+:class:`LaminarSps`, whose loop is f64 only. ``ForcePrecision`` in
+``crates/sph-core/src/scene/numerics.rs``; docs/benchmarks.md measures speed and accuracy."""
+
+CHOICES: dict[str, tuple[str, ...]] = {
+    "kernel": KERNELS,
+    "boundary": BOUNDARY_MODELS,
+    "force_precision": FORCE_PRECISIONS,
+}
+"""The options given by a word, and the words allowed."""
+
+MIN_COEFH = 0.5
+"""Smallest ``coefh`` accepted (the core's ``MIN_COEFH``): a smaller h reaches no more than the
+nearest neighbours, and the neighbour grid (cells of side h) outgrows memory; DualSPHysics'
+cases use 0.75-2."""
+
+MAX_DENSITY_BAND = 1.0
+"""Largest ``density_band`` accepted (the core's ``MAX_DENSITY_BAND``): the band
+``rho0 (1 -+ density_band)`` then reaches density 0, and a wider one bounds nothing below."""
+
+MAX_ENERGY_GROWTH_LIMIT = 1.0
+"""Largest ``energy_growth_limit`` accepted (the core's ``MAX_ENERGY_GROWTH_LIMIT``): an
+unforced fluid whose mechanical energy grew by its whole initial potential energy is no solution
+any more, so a looser monitor would never stop a run that needs stopping."""
+
+
+# ------------------------------------------------------------------------------------------------
+# the options
+
+
+@dataclass(frozen=True, kw_only=True)
+class Option:
+    """A numerical option of a scene: every parameter optional (``None``: the core's default)."""
+
+    FIELD: ClassVar[str]
+    """The scene key (and builder field) the option sits under."""
+    TAG: ClassVar[str] = ""
+    """The model's name (its ``type`` in a scene file); empty for an option of one model."""
+    TAG_KEY: ClassVar[str] = "model"
+    """The key naming the model in the core's scene."""
+    POSITIVE: ClassVar[tuple[str, ...]] = ()
+    """Parameters that must be > 0 (the others must be >= 0)."""
+
+    def __post_init__(self) -> None:
+        self.check()
+
+    def check(self) -> None:
+        """Refuse a parameter out of range, naming it by its dotted path."""
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if value is None:
+                continue
+            key = f"{self.FIELD}.{f.name}"
+            if f.name in self.POSITIVE:
+                _positive(key, value)
+            else:
+                _non_negative(key, value)
+
+    def to_core(self) -> dict[str, Any]:
+        """The option in the core's form: its model and the parameters that are set."""
+        out: dict[str, Any] = {self.TAG_KEY: self.TAG} if self.TAG else {}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if value is not None:
+                out[f.name] = int(value) if str(f.type).startswith("int") else float(value)
+        return out
+
+    def to_table(self) -> dict[str, Any]:
+        """The option as a scene-file table (``type``, then the parameters that are set)."""
+        out: dict[str, Any] = {"type": self.TAG} if self.TAG else {}
+        out.update({f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                    if getattr(self, f.name) is not None})
+        return out
+
+
+@dataclass(frozen=True, kw_only=True)
+class Artificial(Option):
+    """Monaghan (1992) artificial viscosity.
+
+    Attributes:
+        alpha: coefficient [-].
+    """
+
+    FIELD: ClassVar[str] = "viscosity"
+    TAG: ClassVar[str] = "artificial"
+
+    alpha: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Laminar(Option):
+    """Lo & Shao (2002) laminar viscosity.
+
+    Attributes:
+        nu: kinematic viscosity [m^2/s].
+    """
+
+    FIELD: ClassVar[str] = "viscosity"
+    TAG: ClassVar[str] = "laminar"
+
+    nu: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class LaminarSps(Option):
+    """Laminar viscosity plus the SPS Smagorinsky closure (Dalrymple & Rogers 2006); its force
+    loop is f64 only.
+
+    Attributes:
+        nu: kinematic viscosity [m^2/s].
+        cs: Smagorinsky constant [-].
+        ci: Blin constant [-].
+    """
+
+    FIELD: ClassVar[str] = "viscosity"
+    TAG: ClassVar[str] = "laminar_sps"
+
+    nu: float | None = None
+    cs: float | None = None
+    ci: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class NoDiffusion(Option):
+    """No density diffusion term."""
+
+    FIELD: ClassVar[str] = "diffusion"
+    TAG: ClassVar[str] = "none"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Molteni(Option):
+    """Molteni & Colagrossi (2009) density diffusion.
+
+    Attributes:
+        delta: coefficient [-].
+    """
+
+    FIELD: ClassVar[str] = "diffusion"
+    TAG: ClassVar[str] = "molteni"
+
+    delta: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Fourtakas(Option):
+    """Fourtakas et al. (2019) density diffusion: the hydrostatic part of the density difference
+    is removed, taken in pressure, ``(p_b - p_a - rho0 g z_ab) / c0^2``, zero for every pair of
+    still water, where the paper's density form (Eq. 13) adds density at depth and still water
+    slowly expands (docs/wave-flume.md, "The mean water level").
+
+    Attributes:
+        delta: coefficient [-].
+    """
+
+    FIELD: ClassVar[str] = "diffusion"
+    TAG: ClassVar[str] = "fourtakas"
+
+    delta: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Symplectic(Option):
+    """The second-order, time-reversible symplectic scheme (two force evaluations a step)."""
+
+    FIELD: ClassVar[str] = "integrator"
+    TAG: ClassVar[str] = "symplectic"
+    TAG_KEY: ClassVar[str] = "scheme"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Verlet(Option):
+    """The Verlet scheme (one force evaluation a step), with an Euler step now and then.
+
+    Attributes:
+        euler_every: one Euler step every this many steps.
+    """
+
+    FIELD: ClassVar[str] = "integrator"
+    TAG: ClassVar[str] = "verlet"
+    TAG_KEY: ClassVar[str] = "scheme"
+
+    euler_every: int | None = None
+
+    def check(self) -> None:
+        if self.euler_every is not None:
+            _integer("integrator.euler_every", self.euler_every, 1)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Shifting(Option):
+    """Fickian particle shifting (Lind et al. 2012 with Skillen et al. 2013's
+    ``D = A h |u| dt``; ``Shifting`` in ``crates/sph-core/src/scene/numerics.rs``).
+
+    Attributes:
+        coefficient: ``A`` [-] (1-6 the proposed range).
+        surface_threshold: particle divergence at and below which a particle counts as on the
+            free surface and is not shifted [-], in (0, dim); ``None``: the core's, by dimension
+            (DualSPHysics' thresholds).
+    """
+
+    FIELD: ClassVar[str] = "shifting"
+    POSITIVE: ClassVar[tuple[str, ...]] = ("coefficient", "surface_threshold")
+
+    coefficient: float | None = None
+    surface_threshold: float | None = None
+
+    def check_dim(self, dim: int) -> None:
+        """The threshold against the bulk's particle divergence ``dim``."""
+        t = self.surface_threshold
+        if t is not None and not 0.0 < t < dim:
+            raise SceneError(
+                f"shifting.surface_threshold: must lie strictly between 0 and dim = {dim} (the "
+                f"particle divergence inside the water), got {t!r}")
+
+
+VISCOSITIES: tuple[type[Option], ...] = (Artificial, Laminar, LaminarSps)
+DIFFUSIONS: tuple[type[Option], ...] = (NoDiffusion, Molteni, Fourtakas)
+INTEGRATORS: tuple[type[Option], ...] = (Symplectic, Verlet)
+
+OPTION_CLASSES: dict[str, tuple[type[Option], ...]] = {
+    "viscosity": VISCOSITIES,
+    "diffusion": DIFFUSIONS,
+    "integrator": INTEGRATORS,
+    "shifting": (Shifting,),
+}
+"""The builder fields that hold an option, and the classes each takes."""
+
+TAGS: dict[type, str] = {cls: cls.TAG for classes in OPTION_CLASSES.values()
+                         for cls in classes if cls.TAG}
+"""The ``type`` of each model class in a scene file."""
+
+SETTABLE_PARAMETERS: dict[str, tuple[str, ...]] = {
+    name: tuple(dict.fromkeys(f.name for cls in classes for f in dataclasses.fields(cls)))
+    for name, classes in OPTION_CLASSES.items()
+}
+"""The parameters each option field offers to ``--set FIELD.PARAMETER=...``."""
+
+
+def _by_tag(field: str, tag: Any) -> type[Option]:
+    classes = {cls.TAG: cls for cls in OPTION_CLASSES[field]}
+    if not isinstance(tag, str) or tag not in classes:
+        hint = did_you_mean(tag, classes) if isinstance(tag, str) else ""
+        raise SceneError(f"{field}: unknown value {tag!r}{hint}; allowed: "
+                         f"{', '.join(repr(t) for t in classes)}")
+    return classes[tag]
+
+
+def _from_table(field: str, table: Mapping[str, Any]) -> Option:
+    params = dict(table)
+    classes = OPTION_CLASSES[field]
+    cls = _by_tag(field, params.pop("type", None)) if classes[0].TAG else classes[0]
+    names = {f.name for f in dataclasses.fields(cls)}
+    for key in params:
+        if key not in names:
+            model = f" model {cls.TAG!r}" if cls.TAG else ""
+            raise SceneError(f"{field}.{key}: not a parameter of {field}{model} (its "
+                             f"parameters: {', '.join(sorted(names)) or 'none'})")
+    return cls(**params)
+
+
+def option(field: str, value: Any) -> Option | None:
+    """The option of the builder field ``field`` from any of its forms (see the module
+    docstring); None stays None (the core's default)."""
+    if value is None or isinstance(value, OPTION_CLASSES[field]):
+        return value
+    if isinstance(value, str) and OPTION_CLASSES[field][0].TAG:
+        return _by_tag(field, value)()
+    if isinstance(value, Mapping):
+        return _from_table(field, value)
+    if field == "shifting" and isinstance(value, (int, float)) and not isinstance(value, bool):
+        return Shifting(coefficient=value)
+    names = " or ".join(cls.__name__ for cls in OPTION_CLASSES[field])
+    raise SceneError(f"{field}: expected {names}, a model name or a table, got {value!r}")
+
+
+def option_keys(field: str) -> list[str]:
+    """The ``--set`` keys of an option field: the field (its model) and each parameter."""
+    return [field, *(f"{field}.{p}" for p in SETTABLE_PARAMETERS[field])]
+
+
+def from_settings(field: str, current: Any, items: Mapping[str, str]) -> Option | None:
+    """The option ``field`` after ``--set`` items (dotted key -> text): ``FIELD=MODEL`` picks a
+    model with the core's parameters (``none``/``auto`` clears an optional option), each
+    ``FIELD.PARAMETER=VALUE`` sets one parameter of the model chosen (the case's, else the
+    core's default model).
+
+    Raises:
+        OverrideError: a parameter the model does not have, or a value of the wrong type.
+    """
+    try:
+        value = option(field, current)
+        if field in items:
+            text = items[field]
+            cleared = text.strip().lower() in ("none", "null", "auto")
+            typed = Override(field, text).typed(float if field == "shifting" else str)
+            value = None if cleared else option(field, typed)
+        prefix = f"{field}."
+        params = {k[len(prefix):]: t for k, t in items.items() if k.startswith(prefix)}
+        if not params:
+            return value
+        if value is None:
+            tag = core_default(f"{field}.{OPTION_CLASSES[field][0].TAG_KEY}") \
+                if OPTION_CLASSES[field][0].TAG else None
+            value = option(field, tag) if tag is not None else OPTION_CLASSES[field][0]()
+        hints = typing.get_type_hints(type(value))
+        names = {f.name for f in dataclasses.fields(value)}
+        changes = {}
+        for name, text in params.items():
+            if name not in names:
+                model = f" model {value.TAG!r}" if value.TAG else ""
+                raise OverrideError(f"{prefix}{name}: not a parameter of the {field}{model} "
+                                    f"(its parameters: {', '.join(sorted(names)) or 'none'})")
+            changes[name] = Override(prefix + name, text).typed(hints[name])
+        return dataclasses.replace(value, **changes)
+    except SceneError as exc:
+        raise OverrideError(str(exc)) from None
+
+
+# ------------------------------------------------------------------------------------------------
+# presets: the numerics the built-in cases choose on purpose
+
+
+VERIFICATION: Mapping[str, Any] = {"viscosity": Artificial(alpha=0.02)}
+"""The dam break and the still tank (:class:`~watersim.DamBreak`, :class:`~watersim.Tank`):
+artificial viscosity 0.02 instead of the core's 0.01, in the 0.01-0.1 range recommended for
+free-surface flows and a low value, since it also damps the physical flow, but above 0.01 for
+the coarse resolutions these cases run at. It is not tuned to any data set."""
+
+FLUME: Mapping[int, Mapping[str, Any]] = {
+    2: {"coefh": 1.5, "boundary": "adami"},
+    3: {"coefh": 1.2, "boundary": "adami"},
+}
+"""Every flume (:class:`~watersim.FlumeScene`), by dimension, for wave propagation:
+
+- ``coefh = 1.5`` in 2D, 1.2 in 3D (``h = 2.1 dp`` in both; DualSPHysics' 3D wave cases use
+  1.2): at coarse resolution it carries a regular wave much further than ``coefh = 1``
+  (measured in 2D, d = 0.3 m, T = 1.2 s, H = 0.06 m, dp = 0.02 m, H/dp = 3: wave height at one
+  wavelength 92 % of the target against 79 % with ``coefh = 1``; ``coefh = 2`` gives the same
+  92 % at twice the cost). The time step grows with h, which pays back most of the extra
+  neighbours in 2D.
+- ``boundary = "adami"`` (Adami et al. 2012; the dam break keeps DBC): a DBC wall's density
+  remembers the water it has seen, so a crest cannot climb a wall that started dry and the
+  waterline on a wall is pumped down (docs/wave-flume.md, "Walls that remember"). Measured:
+  flume3d's wave at a side wall had 25 % of its height with DBC and the same height as on the
+  centre line with Adami's walls; flume2d at H/dp = 5 keeps 98 % / 95 % / 92 % of the height at
+  1 / 2 / 3 L instead of 94 % / 91 % / 88 %.
+
+The viscosity is the core's, artificial with alpha = 0.01: that of seed 001 (Roselli et al.,
+Table 2) and of DualSPHysics wave cases (Altomare et al. 2017)."""
+
+FLUME_CASE: Mapping[str, Any] = {"coefsound": 10.0}
+"""The built-in flume cases (:mod:`watersim.flume_cases`): ``c0 = 10 sqrt(g d)`` at the paddle
+depth d, ten times the shallow-water wave speed, density variations about 1 % of rho0;
+Monaghan's rule c0 >= 10 |v|max holds for non-breaking waves and, from the deeper paddle depth,
+for the breakers of kimmoun2d and stansby2d too. It halves the number of steps against the
+core's 20."""
+
+FLUME2D_ALPHA = 0.003
+"""Artificial viscosity of the flat-floor regular-wave case flume2d [-]. Its viscous decay of
+the wave height per wavelength is about ``2 nu k^2 L / c_g`` (Lamb 1932, section 348) with
+``nu = alpha h c0 / 8`` (Monaghan 2005, 2D): with alpha = 0.01 that is 1.8 % per wavelength at
+dp = 0.01 m, using up a 5 % height tolerance within three wavelengths; 0.003 costs 0.5 %
+(measured at dp = 0.025 m, where the formula gives 4.5 % for 0.01: alpha 0.01 against 0 costs
+6.6 % of the height at 1 L and 3.0 % per wavelength from 1 to 2 L)."""
+
+WAVE_CARRYING: Mapping[str, Any] = {
+    "viscosity": Artificial(alpha=FLUME2D_ALPHA),
+    "integrator": Verlet(),
+}
+"""A non-breaking wave carried over several wavelengths (flume2d, the second-order validation
+flume; docs/wave-flume.md, "How far WaterSim carries a wave"): :data:`FLUME2D_ALPHA`, and the
+Verlet integrator, one force evaluation per step against two for Symplectic, at the same
+measured decay."""
+
+WATER: Mapping[str, Any] = {"viscosity": Laminar()}
+"""Water's own viscosity (the core's laminar ``nu``, 1e-6 m^2/s) for the cases whose wave runs
+long over a bed or along side walls (kimmoun2d, flume3d): artificial viscosity 0.01 against the
+bed damps the wave (docs/wave-flume.md)."""

@@ -1,0 +1,176 @@
+"""The numerical options (``watersim.numerics``): one default per parameter, the core's; the
+options' forms, checks and ``--set`` keys."""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import warnings
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import watersim as ws
+from watersim import _core, cli
+from watersim import numerics as nm
+from watersim import scenefile as sf
+from watersim.flume import FlumeScene
+from watersim.overrides import OverrideError
+
+PACKAGE = Path(__file__).resolve().parents[1] / "python" / "watersim"
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+PARAMETERS = {*ws.SceneBuilder.CORE_KEYS,
+              *(p for ps in nm.SETTABLE_PARAMETERS.values() for p in ps)}
+"""Every name of a core parameter a Python builder or option carries."""
+
+
+def _dotted(tree: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+    """A nested dict as dotted keys (``{"viscosity.alpha": 0.01, ...}``)."""
+    out: dict[str, Any] = {}
+    for key, value in tree.items():
+        if isinstance(value, dict):
+            out.update(_dotted(value, f"{prefix}{key}."))
+        else:
+            out[f"{prefix}{key}"] = value
+    return out
+
+
+def _preset_pairs() -> set[tuple[str, Any]]:
+    """Every (dotted key, value) a preset of ``watersim.numerics`` chooses."""
+    presets = [nm.VERIFICATION, *nm.FLUME.values(), nm.FLUME_CASE, nm.WAVE_CARRYING, nm.WATER]
+    pairs: set[tuple[str, Any]] = set()
+    for preset in presets:
+        scene = ws.Tank(**preset).to_scene()  # the preset in the core's form
+        pairs |= {(k, v) for k, v in _dotted(scene).items() if k.split(".")[0] in preset}
+    return pairs
+
+
+def _case_builder(case: str) -> ws.SceneBuilder:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # wave-validity warnings of some cases
+        return cli.builder_from_args(case, [])
+
+
+@pytest.mark.parametrize("case", cli.ALL_CASES)
+def test_one_default_per_parameter(case: str) -> None:
+    """What a built-in case sends the core differs from the core's default only where a preset
+    of ``watersim.numerics`` chooses so; everything else it leaves to the core."""
+    defaults = _dotted(_core.scene_defaults())
+    sent = _dotted(_case_builder(case).to_scene())
+    chosen = _preset_pairs()
+    for key, value in sent.items():
+        if key in defaults and value != defaults[key]:
+            assert (key, value) in chosen, f"{case}: {key} = {value!r}, the core's is " \
+                                           f"{defaults[key]!r}, and no preset chooses it"
+
+
+@pytest.mark.parametrize("cls", [ws.DamBreak, ws.Tank, FlumeScene, *nm.TAGS, nm.Shifting])
+def test_python_declares_no_default_of_its_own(cls: type) -> None:
+    """A core parameter's field defaults to None (the core decides) in every builder and
+    option class."""
+    for f in dataclasses.fields(cls):
+        if f.name in PARAMETERS:
+            assert f.default is None, f"{cls.__name__}.{f.name} defaults to {f.default!r}"
+
+
+BUILDER_CALLS = {"DamBreak", "Tank", "FlumeScene", "scene", "simulation", "numerics", "replace",
+                 "_finish", "_quiet_scene", *(cls.__name__ for cls in nm.TAGS), "Shifting"}
+"""Calls whose keyword arguments are builder or option fields."""
+UNAMBIGUOUS = PARAMETERS - {"gamma", "alpha", "kernel", "boundary", "coefficient", "shifting",
+                            "surface_threshold"}
+"""Core parameter names no other code uses for something else (JONSWAP's gamma, matplotlib's
+alpha, ...): a dict entry with one of them is scene data."""
+
+
+def _literal_settings(tree: ast.AST) -> list[tuple[str, Any]]:
+    """``(name, value node)`` of each literal given to a core parameter in ``tree``."""
+    pairs: list[tuple[Any, Any]] = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            func = node.func
+            callee = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+            if callee in BUILDER_CALLS:
+                pairs += [(k.arg, k.value) for k in node.keywords if k.arg in PARAMETERS]
+        elif isinstance(node, ast.Dict):
+            pairs += [(k.value, v) for k, v in zip(node.keys, node.values, strict=True)
+                      if isinstance(k, ast.Constant) and k.value in UNAMBIGUOUS]
+        elif isinstance(node, ast.ClassDef):
+            for item in node.body:
+                if (isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name)
+                        and item.target.id in UNAMBIGUOUS):
+                    pairs.append((item.target.id, item.value))
+    return [(name, v) for name, v in pairs
+            if isinstance(v, ast.Constant) and v.value is not None]
+
+
+def test_no_numbers_for_core_parameters_outside_the_numerics_module() -> None:
+    """The grep: no builder call, scene dict or class field gives a core parameter a literal
+    value anywhere in the package but ``numerics.py`` and ``bench_cases.py`` (which copies
+    DualSPHysics' case files)."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.name in ("numerics.py", "bench_cases.py"):
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        found += [f"{path.name}:{v.lineno} {name} = {v.value!r}"
+                  for name, v in _literal_settings(tree)]
+    assert not found, found
+
+
+def test_defaults_of_the_core_are_read_not_kept() -> None:
+    assert nm.core_default("viscosity.alpha") == _core.scene_defaults()["viscosity"]["alpha"]
+    assert ws.DamBreak().core_value("coefh") == nm.core_default("coefh")
+    assert ws.DamBreak(coefh=1.3).core_value("coefh") == 1.3
+
+
+def test_an_option_takes_an_object_a_name_or_a_table() -> None:
+    forms = [nm.Laminar(nu=2e-6), {"type": "laminar", "nu": 2e-6}]
+    assert {ws.Tank(viscosity=f).viscosity for f in forms} == {nm.Laminar(nu=2e-6)}
+    assert ws.Tank(viscosity="laminar").viscosity == nm.Laminar()
+    assert ws.Tank(shifting=3.0).shifting == nm.Shifting(coefficient=3.0)
+    assert nm.Verlet(euler_every=20).to_core() == {"scheme": "verlet", "euler_every": 20}
+    assert nm.Laminar().to_core() == {"model": "laminar"}  # the core's nu
+
+
+@pytest.mark.parametrize(("value", "key", "reason"), [
+    ({"type": "laminar", "alpha": 0.1}, "viscosity.alpha", "not a parameter"),
+    ({"type": "artificial", "alpha": -1.0}, "viscosity.alpha", "negative"),
+    ({"alpha": 0.1}, "viscosity", "unknown value None"),
+    ("lamniar", "viscosity", "did you mean"),
+])
+def test_bad_options_are_refused_naming_the_dotted_key(value: Any, key: str, reason: str) -> None:
+    with pytest.raises(ws.SceneError, match=rf"^{key}: .*{reason}"):
+        ws.DamBreak(viscosity=value)
+
+
+def test_set_changes_one_parameter_of_a_case() -> None:
+    b = cli.builder_from_args("dambreak2d", ["viscosity.alpha=0.05", "integrator=verlet",
+                                             "integrator.euler_every=30"])
+    assert b.viscosity == nm.Artificial(alpha=0.05)
+    assert b.integrator == nm.Verlet(euler_every=30)
+    assert "viscosity.nu" in cli.settable_keys("dambreak2d")
+    flume = _case_builder("flume2d")
+    assert flume.viscosity == nm.Artificial(alpha=nm.FLUME2D_ALPHA)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        laminar = cli.builder_from_args("flume2d", ["viscosity=laminar",
+                                                    "viscosity.nu=2e-6"])
+    assert laminar.viscosity == nm.Laminar(nu=2e-6)
+    with pytest.raises(OverrideError, match=r"^viscosity\.nu: not a parameter of the "
+                                            r"viscosity model 'artificial'"):
+        cli.builder_from_args("dambreak2d", ["viscosity.nu=2e-6"])
+    with pytest.raises(OverrideError, match=r"^integrator\.euler_every: expected an integer"):
+        cli.builder_from_args("dambreak2d", ["integrator=verlet", "integrator.euler_every=x"])
+
+
+def test_scene_files_take_option_tables_and_set_their_parameters() -> None:
+    scene = sf.load(EXAMPLES / "dambreak2d.toml", ["viscosity.alpha=0.03"])
+    assert scene.builder.viscosity == nm.Artificial(alpha=0.03)
+    with pytest.raises(sf.SceneFileError,
+                       match=r"f\.toml: viscosity\.alpha: unknown key for Laminar"):
+        sf.loads('type = "tank"\nviscosity = { type = "laminar", alpha = 0.1 }\n',
+                 source="f.toml")
+    text = sf.dumps(ws.Tank(viscosity=nm.Laminar(nu=2e-6)))
+    assert sf.loads(text).builder.viscosity == nm.Laminar(nu=2e-6)
