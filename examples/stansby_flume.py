@@ -10,8 +10,9 @@ the script prints its estimate before it starts and the speed it measures once i
 The flume is the built-in case ``stansby2d`` written out with the public API: d = 0.34 m,
 11 m long (seed 002 Table 1), plane 1:20 beach from x = 2.0 m (the seed does not give the toe:
 an estimate, see ``watersim.flume_cases.case_stansby2d``), H = 0.105 m, T = 2.42 s,
-second-order piston with a two-period ramp (Ursell number about 45: a WaveValidityWarning says
-the theory is stretched), the gauges of seed 002 Table 2 (the repeated positions 7.2 and 7.6 m
+piston with a two-period ramp following the stream-function law (``theory = "auto"`` picks it at
+the wave's Ursell number, 48, beyond second-order theory; ``theory="stokes2"`` gives Madsen's
+second-order law with a WaveValidityWarning), the gauges of seed 002 Table 2 (the repeated positions 7.2 and 7.6 m
 once) plus two over the flat floor; gauges take the highest particle.
 
 Writes to ``--out``: gauges.csv, analysis.json, records.npz, summary.json,

@@ -70,7 +70,7 @@ def _synthetic_records(scene: ws.FlumeScene, height: float, period: float) -> li
 def test_example_figures_from_a_synthetic_record(name: str, tmp_path: Path) -> None:
     mod = _load(name)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", wt.WaveValidityWarning)  # stansby: Ursell number 45
+        warnings.simplefilter("ignore", wt.WaveValidityWarning)
         flume, kwargs = mod.make(lattice_dp(mod.DEPTH, 0.05), 30.0)  # whole layers
         scene = flume.scene(**kwargs)
     gauges = FlumeGauges(scene, _synthetic_records(scene, mod.HEIGHT, mod.PERIOD))

@@ -124,7 +124,7 @@ def test_gauge_outside_the_3d_width_is_refused() -> None:
 
 def test_wave_breaking_at_the_paddle_is_a_warning_not_an_error() -> None:
     with pytest.warns(wt.WaveValidityWarning) as record:
-        built = scene(wave=regular(height=0.27))
+        built = scene(wave=regular(height=0.27, theory="linear"))
     messages = [str(w.message) for w in record]
     assert any("breaks at the paddle" in m for m in messages), messages
     assert built.to_scene()["paddle"]["law"]["components"][0][0] > 0
@@ -133,9 +133,11 @@ def test_wave_breaking_at_the_paddle_is_a_warning_not_an_error() -> None:
 def test_wave_beyond_second_order_warns() -> None:
     with pytest.warns(wt.WaveValidityWarning) as record:
         ws.Flume(length=11.0, depth=0.34).scene(
-            ws.RegularWave(height=0.105, period=2.42), paddle=ws.Piston(order=2), dp=0.034
+            ws.RegularWave(height=0.105, period=2.42, theory="stokes2"),
+            paddle=ws.Piston(order=2), dp=0.034
         )
-    assert any("Ursell" in str(w.message) for w in record)
+    assert any("Ursell number H L^2/d^3 = 48.2 exceeds 8 pi^2/3 = 26.3" in str(w.message)
+               for w in record)
 
 
 def test_the_core_refuses_what_python_does_not_check() -> None:

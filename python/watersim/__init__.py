@@ -7,8 +7,8 @@ Public names:
 - :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`MeshBeach` (3D,
   from an STL file), :class:`DampingZone`): the wave
   flume; :meth:`Flume.simulation` takes a wave (:class:`RegularWave`, :class:`IrregularWave`,
-  :class:`SolitaryWave`, :class:`TabulatedMotion`), a paddle (:class:`Piston`, :class:`Flap`)
-  and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`, :class:`VelocityWindow`,
+  :class:`FocusedWave`, :class:`SolitaryWave`, :class:`TabulatedMotion`), a paddle
+  (:class:`Piston`, :class:`Flap`) and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`, :class:`VelocityWindow`,
   :class:`RunupGauge`) and gives a :class:`FlumeSimulation`.
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
@@ -35,6 +35,7 @@ from .flume import (
     FlumeGauges,
     FlumeScene,
     FlumeSimulation,
+    FocusedWave,
     IrregularWave,
     MeshBeach,
     Piston,
@@ -64,6 +65,7 @@ __all__ = [
     "FlumeGauges",
     "FlumeScene",
     "FlumeSimulation",
+    "FocusedWave",
     "InstabilityError",
     "IrregularWave",
     "MeshBeach",

@@ -233,8 +233,10 @@ def _unique_positions(gauges: list[ElevationGauge]) -> list[ElevationGauge]:
 def case_stansby2d(s: _Settings) -> FlumeScene:
     """Seed 002 (Makris et al.; Stansby & Feng 2005): spilling/plunging breakers on a 1:20 beach.
 
-    d = 0.34 m, slope 1:20, H = 0.105 m, T = 2.42 s (seed Table 1), second-order piston
-    (Ursell number about 45, beyond Madsen's validity: a WaveValidityWarning says so), the 24
+    d = 0.34 m, slope 1:20, H = 0.105 m, T = 2.42 s (seed Table 1), a piston following the
+    stream-function law (the wave's Ursell number, 48, is beyond Madsen's second order, so
+    ``theory = "auto"`` picks it; ``--set wave.theory=stokes2`` gives the second-order law,
+    with a WaveValidityWarning), the 24
     gauges of seed Table 2, plus gauges at 0.8 and 1.8 m over the flat floor for the reflection
     coefficient, and the run-up gauge. The elevation gauges take the highest particle (the
     surf-zone gauges stand in water a few particles deep at the default dp, which the kernel

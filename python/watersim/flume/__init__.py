@@ -69,7 +69,14 @@ from .paddles import RAMPS, Flap, Piston, flap_height_to_stroke_hinged
 from .records import FlumeGauges, VelocityRecord
 from .scene import CHOICES, TAGS, Flume, FlumeScene
 from .simulation import FlumeSimulation
-from .waves import SPECTRA, IrregularWave, RegularWave, SolitaryWave, TabulatedMotion
+from .waves import (
+    SPECTRA,
+    FocusedWave,
+    IrregularWave,
+    RegularWave,
+    SolitaryWave,
+    TabulatedMotion,
+)
 
 __all__ = [
     "CHOICES",
@@ -82,6 +89,7 @@ __all__ = [
     "ElevationGauge",
     "Flap",
     "Flume",
+    "FocusedWave",
     "FlumeGauges",
     "FlumeScene",
     "FlumeSimulation",

@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from .. import wave_theory as wt
 from .._core import SceneError
-from ..checks import _choice, _non_negative
+from ..checks import _choice, _non_negative, _positive
 from .checks import _set
 
 RAMPS: tuple[str, ...] = ("linear", "tanh")
@@ -39,6 +39,23 @@ class PaddleLaw:
     absorption_drift_time: float | None = None
     """Time constant of the absorption's drift correction [s]: ten (peak) periods."""
 
+    def travel(self) -> float:
+        """Peak-to-peak travel of the paddle [m]: a table's range; a harmonic law's range over
+        its period, sampled at a twentieth of its shortest component period (the start-up ramp
+        only lowers it). The laws' frequencies are whole multiples of a fundamental (the
+        harmonics of a regular wave, the spectral lines of a synthesis), the smallest of the
+        lowest frequency and the gaps between them."""
+        if self.law["type"] == "table":
+            return float(np.max(self.law["x"]) - np.min(self.law["x"]))
+        parts = np.asarray(self.law["components"], dtype=np.float64).reshape(-1, 3)
+        omegas = np.unique(parts[parts[:, 1] > 0.0, 1])
+        if omegas.size == 0:
+            return 0.0
+        fundamental = float(np.min(np.append(np.diff(omegas), omegas[0])))
+        t = np.arange(0.0, 2.0 * np.pi / fundamental, 2.0 * np.pi / omegas[-1] / 20.0)
+        x = np.sin(np.multiply.outer(t, parts[:, 1]) + parts[:, 2]) @ parts[:, 0]
+        return float(np.max(x) - np.min(x))
+
 
 def _optional_bool(field: str, value: object) -> None:
     if value is not None and not isinstance(value, bool):
@@ -55,6 +72,7 @@ class _Paddle:
     """The allowed values of the paddle's string fields."""
     ramp_periods: float
     ramp: str
+    max_stroke: float | None
 
     def check(self, depth: float) -> None:
         """Refuse a paddle that does not fit a flume ``depth`` [m] deep."""
@@ -132,7 +150,9 @@ class Piston(_Paddle):
     """A piston wave-maker: the paddle translates along x.
 
     Attributes:
-        order: 1 (Biesel) or 2 (Madsen 1971 second-order correction, regular waves only).
+        order: 1 (Biesel) or 2 (Madsen 1971 second-order correction), for regular waves; the
+            wave's ``theory`` may choose another law (``"auto"``: the stream-function law
+            beyond Madsen's Ursell number).
         ramp_periods: start-up ramp length in wave periods (peak periods for irregular waves);
             0 for none. Tabulated and solitary motions have no ramp.
         ramp: ``"linear"`` (``min(1, t / T_r)``) or ``"tanh"`` (``tanh(4 t / T_r)``).
@@ -140,12 +160,16 @@ class Piston(_Paddle):
             the water of the waves coming back from the flume, measured in front of it, so
             that they leave instead of being reflected again; ``None`` (default): on when the
             flume has a beach, ``False``: off.
+        max_stroke: the largest peak-to-peak travel the wave-maker has [m]; a wave needing more
+            is refused before anything runs, naming its size (``wave.height``, ...). ``None``:
+            no limit but the flume's length.
     """
 
     order: int = 1
     ramp_periods: float = 2.0
     ramp: str = "linear"
     absorption: bool | None = None
+    max_stroke: float | None = None
 
     kind: ClassVar[wt.Paddle] = "piston"
     TAG: ClassVar[str] = kind
@@ -156,6 +180,8 @@ class Piston(_Paddle):
             raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
         _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
+        if self.max_stroke is not None:
+            _set(self, "max_stroke", _positive("paddle.max_stroke", self.max_stroke))
 
 
 @dataclass(frozen=True)
@@ -169,12 +195,15 @@ class Flap(_Paddle):
         ramp_periods: start-up ramp length in wave periods; 0 for none.
         ramp: ``"linear"`` or ``"tanh"``.
         absorption: active wave absorption, as :class:`Piston`'s.
+        max_stroke: the largest peak-to-peak travel at the still-water level the wave-maker has
+            [m] (see :class:`Piston`).
     """
 
     hinge_z: float | None = None
     ramp_periods: float = 2.0
     ramp: str = "linear"
     absorption: bool | None = None
+    max_stroke: float | None = None
 
     order: ClassVar[int] = 1
     kind: ClassVar[wt.Paddle] = "flap"
@@ -186,6 +215,8 @@ class Flap(_Paddle):
             _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
         _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
+        if self.max_stroke is not None:
+            _set(self, "max_stroke", _positive("paddle.max_stroke", self.max_stroke))
 
     @property
     def hinge(self) -> float:

@@ -257,6 +257,13 @@ class FlumeScene(SceneBuilder):
         law = self.law
         if not (math.isfinite(law.forward) and math.isfinite(law.backward)):
             raise SceneError(f"wave: the paddle motion is not finite (excursion {law.forward!r} m)")
+        limit = self.paddle.max_stroke
+        if limit is not None and law.travel() > limit:
+            raise SceneError(
+                f"wave.{self.wave.SIZE}: the paddle would travel {law.travel():.4g} m peak to "
+                f"peak, more than its stroke (paddle.max_stroke = {limit:g} m)"
+            )
+        self.wave.check_in(self)
         if law.forward + 2.0 * dp >= flume.length:
             raise SceneError(
                 f"paddle: its forward excursion ({law.forward:.4g} m, plus 2 dp) reaches the "
