@@ -19,6 +19,7 @@ import pytest
 import watersim as ws
 from watersim import analysis
 from watersim import wave_theory as wt
+from watersim.flume import flap_height_to_stroke_hinged
 
 G = 9.81
 
@@ -319,3 +320,65 @@ def test_stream_function_paddle_makes_the_target_height() -> None:
     waves = analysis.zero_crossing_waves(sim.gauges.elevation[steady, 0], t[steady])
     assert waves.heights.size >= 1
     assert waves.mean_height == pytest.approx(height, rel=0.10)
+
+
+# ------------------------------------------------------------------------------------------------
+# second-order generation by a flap (Schaffer 1996)
+
+
+def _second_harmonic(amplitude: float, phase: float) -> complex:
+    """``A sin(2 theta + phase)`` as ``sin`` + 1j ``cos`` coefficients."""
+    return complex(amplitude * math.cos(phase), amplitude * math.sin(phase))
+
+
+def _flux_second_order(height: float, period: float, depth: float, hinge: float) -> float:
+    """Madsen's depth-integrated argument with the flap's displacement profile f (long waves):
+    the paddle's second-order flux ``dX2/dt int f dz`` supplies the bound wave's flux minus
+    ``X1 d(eta1)/dt`` (f = 1 at the still-water level): with ``int f dz = (d - l) / 2``,
+    ``X2 = [3/16 H^2 cosh kd / sinh^3 kd - S H / 8] / (d - l)``."""
+    k = float(wt.wavenumber(period, depth))
+    stroke = height / float(flap_height_to_stroke_hinged(k, depth, hinge))
+    kd = k * depth
+    bound = 3.0 / 16.0 * height**2 * math.cosh(kd) / math.sinh(kd) ** 3
+    return (bound - stroke * height / 8.0) / (depth - hinge)
+
+
+def test_schaffer_piston_tends_to_madsen_in_shallow_water() -> None:
+    for period, tolerance in ((8.0, 2e-3), (4.0, 2e-2)):
+        k = float(wt.wavenumber(period, 0.5))
+        madsen = float(wt.regular_paddle_motion(0.01, period, 0.5, "piston", 2)
+                       .second_order_amplitude)
+        full = _second_harmonic(*wt.second_order_stroke(0.01, period, 0.5, "piston"))
+        assert full.real == pytest.approx(madsen, rel=tolerance), k * 0.5
+        assert abs(full.imag) < 1e-3 * abs(full)
+
+
+@pytest.mark.parametrize("hinge", [0.0, 0.1])
+def test_schaffer_flap_tends_to_the_depth_integrated_law_in_shallow_water(hinge: float) -> None:
+    period, depth, height = 16.0, 0.5, 0.01  # kd = 0.09
+    full = _second_harmonic(*wt.second_order_stroke(height, period, depth, "flap", hinge))
+    assert full.real == pytest.approx(_flux_second_order(height, period, depth, hinge), rel=0.015)
+    assert abs(full.imag) < 1e-3 * abs(full)
+
+
+def test_schaffer_converges_with_the_number_of_modes() -> None:
+    for period in (2.42, 1.0):
+        coarse = _second_harmonic(*wt.second_order_stroke(0.01, period, 0.5, "flap", modes=200))
+        fine = _second_harmonic(*wt.second_order_stroke(0.01, period, 0.5, "flap", modes=400))
+        assert abs(coarse - fine) < 5e-3 * abs(fine)
+
+
+def test_second_order_flap_law() -> None:
+    flume = ws.Flume(length=4.0, depth=0.5, damping=True)
+    for hinge in (None, 0.1):
+        scene = flume.scene(ws.RegularWave(height=0.04, period=1.0, phase=0.3),
+                            paddle=ws.Flap(hinge_z=hinge, order=2), dp=0.05)
+        (a1, w1, p1), (a2, w2, p2) = scene.law.law["components"]
+        amplitude, psi = wt.second_order_stroke(0.04, 1.0, 0.5, "flap", hinge or 0.0)
+        assert a2 == pytest.approx(amplitude) and w2 == pytest.approx(2 * w1)
+        assert p2 == pytest.approx(2 * 0.3 + psi)
+        assert scene.describe()["theory"] == "stokes2"
+        target = scene.law.absorption_target
+        assert target is not None and len(target["components"]) == 2  # Stokes' bound harmonic
+    with pytest.raises(ws.SceneError, match="^paddle.order: second-order generation is for reg"):
+        flume.scene(ws.IrregularWave(hs=0.03, tp=1.0), paddle=ws.Flap(order=2), dp=0.05)

@@ -473,7 +473,6 @@ def test_warn_if_invalid_wave_emits_wave_validity_warnings() -> None:
         (lambda: wt.piston_motion([0.0], 0.1, 1.0, 1.0, ramp_periods=-1), "ramp_periods"),
         (lambda: wt.piston_motion([0.0], 0.1, 1.0, 1.0, ramp="cubic"), "ramp"),
         (lambda: wt.regular_paddle_motion(0.1, 1.0, 1.0, order=3), "order"),
-        (lambda: wt.regular_paddle_motion(0.1, 1.0, 1.0, "flap", order=2), "order"),
         (lambda: wt.regular_paddle_motion(0.1, 1.0, 1.0, "wedge"), "paddle"),
         (lambda: wt.jonswap_spectrum(0.5, 0.1, 2.0, gamma=0.5), "gamma"),
         (lambda: wt.jonswap_spectrum(-0.5, 0.1, 2.0), "frequency"),

@@ -44,6 +44,7 @@ __all__ = [
     "STREAM_FUNCTION_TOLERANCE",
     "IrregularPaddleMotion",
     "RegularPaddleMotion",
+    "SCHAFFER_MODES",
     "StreamFunctionPaddleMotion",
     "StreamFunctionWave",
     "WaveValidityWarning",
@@ -75,6 +76,7 @@ __all__ = [
     "piston_motion",
     "piston_stroke",
     "regular_paddle_motion",
+    "second_order_stroke",
     "schuttrumpf_runup",
     "solitary_celerity",
     "solitary_piston_duration",
@@ -357,7 +359,7 @@ class RegularPaddleMotion:
 
     The law, for t >= 0 (r(t) the ramp of :meth:`motion`)::
 
-        X(t) = r(t) [ (S/2) sin(omega t + phase) + X2 sin(2 omega t + 2 phase) ]
+        X(t) = r(t) [ (S/2) sin(omega t + phase) + X2 sin(2 omega t + 2 phase + psi) ]
         U(t) = dX/dt (exact derivative, ramp included)
 
     For a flap, X is the displacement at the still-water level; the rotation about the hinge on
@@ -371,9 +373,11 @@ class RegularPaddleMotion:
         omega: angular frequency 2 pi / T [rad/s].
         wavenumber: linear wavenumber k [rad/m].
         stroke: first-order peak-to-peak stroke S = H / (H/S) [m] (Biesel, FORMULAS §2).
-        second_order_amplitude: Madsen (1971) second-harmonic amplitude X2 [m] (signed; 0 for
-            first-order generation). FORMULAS §3.
+        second_order_amplitude: second-harmonic amplitude X2 [m]: Madsen's (1971) for a piston
+            (signed; FORMULAS §3), Schaffer's (1996) for a flap (:func:`second_order_stroke`); 0
+            for first-order generation.
         phase: phase ``delta`` [rad].
+        second_order_phase: psi [rad], the second harmonic's own phase (0 for a piston).
     """
 
     paddle: Paddle
@@ -385,6 +389,7 @@ class RegularPaddleMotion:
     stroke: float
     second_order_amplitude: float
     phase: float
+    second_order_phase: float = 0.0
 
     def motion(
         self, t: npt.ArrayLike, ramp_periods: float = 2.0, ramp: RampKind = "linear"
@@ -402,8 +407,9 @@ class RegularPaddleMotion:
         _choice("ramp", ramp, ("linear", "tanh"))
         r, dr = _ramp(tt, n * self.period, ramp)
         w, a1, a2, ph = self.omega, 0.5 * self.stroke, self.second_order_amplitude, self.phase
-        base = a1 * np.sin(w * tt + ph) + a2 * np.sin(2.0 * w * tt + 2.0 * ph)
-        base_rate = a1 * w * np.cos(w * tt + ph) + 2.0 * w * a2 * np.cos(2.0 * w * tt + 2.0 * ph)
+        ph2 = 2.0 * ph + self.second_order_phase
+        base = a1 * np.sin(w * tt + ph) + a2 * np.sin(2.0 * w * tt + ph2)
+        base_rate = a1 * w * np.cos(w * tt + ph) + 2.0 * w * a2 * np.cos(2.0 * w * tt + ph2)
         return _out(r * base), _out(dr * base + r * base_rate)
 
 
@@ -419,18 +425,20 @@ def regular_paddle_motion(
     """Coefficients of the paddle law generating a regular wave of height H and period T.
 
     First order (Biesel, FORMULAS §2): ``X = (S/2) sin(omega t + phase)`` with S = H / (H/S).
-    Second order (piston only; Madsen 1971, as used in DualSPHysics by Altomare et al. 2017,
+    Second order, piston (Madsen 1971, as used in DualSPHysics by Altomare et al. 2017,
     FORMULAS §3): adds ``X2 sin(2 omega t + 2 phase)`` with
     ``X2 = H^2/(32 d) (3 cosh kd / sinh^3 kd - 2/m1)``, ``m1 = H/S`` of the piston. X2 > 0 in
     shallow water and < 0 in deep water; the sign convention is FORMULAS §3's (the same
     ``sin(2 omega t + 2 delta)`` term as the DualSPHysics-type script it cross-checks).
+    Second order, bottom-hinged flap: Schaffer's (1996) ``X2 sin(2 omega t + 2 phase + psi)``
+    (:func:`second_order_stroke`).
 
     Args:
         height: wave height H [m].
         period: wave period T [s].
         depth: still-water depth at the paddle d [m].
         paddle: ``"piston"`` or ``"flap"`` (bottom-hinged).
-        order: 1 or 2 (2 only for a piston).
+        order: 1 or 2.
         phase: phase ``delta`` [rad].
         g: gravitational acceleration [m/s^2].
     """
@@ -441,12 +449,14 @@ def regular_paddle_motion(
     _choice("paddle", paddle, ("piston", "flap"))
     if order not in (1, 2):
         raise ValueError(f"order: must be 1 or 2, got {order!r}")
-    if order == 2 and paddle != "piston":
-        raise ValueError("order: second-order (Madsen 1971) generation is for a piston only")
     k = float(wavenumber(T, d, g))
     transfer = piston_height_to_stroke if paddle == "piston" else flap_height_to_stroke
     stroke = H / float(transfer(k, d))
-    x2 = float(_madsen_second_order_amplitude(np.float64(H), np.float64(k * d), np.float64(d)))
+    x2, psi = 0.0, 0.0
+    if order == 2 and paddle == "piston":
+        x2 = float(_madsen_second_order_amplitude(np.float64(H), np.float64(k * d), np.float64(d)))
+    elif order == 2:
+        x2, psi = second_order_stroke(H, T, d, "flap", 0.0, g=g)
     return RegularPaddleMotion(
         paddle=paddle,
         height=H,
@@ -455,8 +465,9 @@ def regular_paddle_motion(
         omega=2.0 * math.pi / T,
         wavenumber=k,
         stroke=stroke,
-        second_order_amplitude=x2 if order == 2 else 0.0,
+        second_order_amplitude=x2,
         phase=ph,
+        second_order_phase=psi,
     )
 
 
@@ -545,6 +556,132 @@ def stokes2_elevation(
     theta = k * xx - w * tt - float(_finite("phase", phase))
     a2 = float(stokes2_second_harmonic_amplitude(H, k, depth))
     return _out(0.5 * H * np.cos(theta) + a2 * np.cos(2.0 * theta))
+
+
+# ------------------------------------------------------------------------------------------------
+# Second-order generation by any paddle: the eigenfunction expansion of Schaffer (1996)
+
+SCHAFFER_MODES = 200
+"""Evanescent modes of :func:`second_order_stroke` (at first order and at 2 omega): its result
+changes by about 0.3 % from 200 to 400 (the series converge like 1/M, through the paddle's
+corner with the free surface)."""
+
+
+def _evanescent_wavenumbers(omega: float, depth: float, count: int, g: float) -> FloatArray:
+    """kappa_n, n = 1..count, of the evanescent modes ``cos(kappa (z + d)) e^(-kappa x)`` at
+    frequency omega: the roots of ``omega^2 = -g kappa tan(kappa d)`` in ((n - 1/2) pi, n pi) / d.
+
+    Newton's method on ``x sin x + y cos x`` (x = kappa d, y = omega^2 d / g; no poles), kept
+    inside each root's bracket by bisection; 60 steps reach rounding."""
+    y = omega * omega * depth / g
+    n = np.arange(1, count + 1, dtype=np.float64)
+    lo, hi = (n - 0.5) * np.pi, n * np.pi
+    x = np.clip(n * np.pi - y / (n * np.pi), lo, hi)
+    sign_hi = np.sign(y * np.cos(hi))
+    for _ in range(60):
+        f = x * np.sin(x) + y * np.cos(x)
+        same = np.sign(f) == sign_hi
+        hi = np.where(same, x, hi)
+        lo = np.where(same, lo, x)
+        step = x - f / (np.sin(x) + x * np.cos(x) - y * np.sin(x))
+        x = np.where((step > lo) & (step < hi), step, 0.5 * (lo + hi))
+    return x / depth
+
+
+def second_order_stroke(
+    height: float,
+    period: float,
+    depth: float,
+    paddle: Paddle = "flap",
+    hinge_height: float = 0.0,
+    modes: int = SCHAFFER_MODES,
+    g: float = G,
+) -> tuple[float, float]:
+    """Second-harmonic paddle motion cancelling the free second harmonic of a regular wave:
+    Schaffer's (1996) second-order wave-maker theory for a piston or a flap hinged
+    ``hinge_height`` above the bed, by its eigenfunction expansion (evanescent modes included).
+
+    The paddle face is ``x = f(z) X(t)``, f = 1 for a piston and ``(z - l) / (d - l)`` above a
+    flap's hinge l (0 below), so X is the displacement at the still-water level; the first-order
+    motion ``X1 = (S/2) sin(omega t)`` makes ``eta = (H/2) cos(omega t)`` at the paddle (S from
+    the transfer function). First order: the potential is the progressive mode plus ``modes``
+    evanescent ones, their amplitudes the projections of the paddle velocity ``f dX1/dt`` on
+    each mode (Biesel). Second order, at 2 omega: every pair of first-order modes forces the
+    free surface (the second-order combined surface condition,
+    ``phi_tt + g phi_z = -d/dt |grad phi|^2 + (1/g) phi_t d/dz (phi_tt + g phi_z)`` at z = 0),
+    each with its bound (particular) solution ``cosh(q (z + d)) e^(i q x)``, q the sum of the
+    pair's wavenumbers; the paddle condition, expanded about x = 0, asks
+    ``phi2_x = f dX2/dt - f X1 phi1_xx + f' X1 phi1_z``. The free progressive wave at 2 omega is
+    the projection of (paddle velocity - bound velocity) at x = 0 on its eigenfunction
+    ``cosh(K (z + d))`` (orthogonal to the evanescent ones); X2 is chosen to make it zero.
+    The projections are Gauss-Legendre quadratures (split at the hinge).
+
+    Limits (tests/test_wave_laws.py): a piston tends to Madsen's (1971) amplitude in shallow
+    water (0.1 % at kd = 0.18), a flap to the depth-integrated form of Madsen's argument with
+    its displacement profile; as kd grows the evanescent near field changes X2's size and
+    gives it a phase (Schaffer 1996: the new terms matter where the paddle's motion fits the
+    wave's velocity profile badly).
+
+    Returns:
+        ``(amplitude, phase)`` [m, rad]: ``X2 = amplitude sin(2 omega t + phase)`` (add
+        ``2 delta`` for the law's phase delta).
+    """
+    H = float(_positive("height", height))
+    T = float(_positive("period", period))
+    d = float(_positive("depth", depth))
+    _choice("paddle", paddle, ("piston", "flap"))
+    hinge = float(_nonnegative("hinge_height", hinge_height))
+    if paddle == "flap" and hinge >= d:
+        raise ValueError(f"hinge_height: must be below the still-water level, got {hinge!r}")
+    omega = 2.0 * math.pi / T
+    k = np.concatenate([[float(wavenumber_from_omega(omega, d, g))],
+                        1j * _evanescent_wavenumbers(omega, d, modes, g)])
+    big_k = float(wavenumber_from_omega(2.0 * omega, d, g))
+    # composite 16-point Gauss-Legendre over the water column, a panel per half wave of the
+    # highest mode, split where the flap's profile has its kink
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    ends = [0.0, hinge, d] if paddle == "flap" and hinge > 0.0 else [0.0, d]
+    edges = np.unique(np.concatenate(
+        [np.linspace(a, b, max(2, math.ceil((modes + 1) * (b - a) / d) + 1))
+         for a, b in zip(ends[:-1], ends[1:], strict=False)]))
+    half = 0.5 * np.diff(edges)[:, None]
+    s = (half * nodes + 0.5 * (edges[1:] + edges[:-1])[:, None]).ravel()  # z + d
+    w = (half * weights).ravel()
+    if paddle == "piston":
+        f, f_z = np.ones_like(s), np.zeros_like(s)
+    else:
+        above = s > hinge
+        f = np.where(above, (s - hinge) / (d - hinge), 0.0)
+        f_z = np.where(above, 1.0 / (d - hinge), 0.0)
+    mode = np.cosh(np.multiply.outer(k, s))
+    mode_z = k[:, None] * np.sinh(np.multiply.outer(k, s))
+    # first order, time factor e^(-i omega t): phi_x(0, z) = -i omega xi f with xi = i S/2
+    norms = (mode * mode) @ w
+    a = -omega * ((mode * f) @ w) / (k * norms)
+    cosh_kd, sinh_kd = np.cosh(k * d), np.sinh(k * d)
+    xi = (0.5 * H) / (1j * omega / g * a[0] * cosh_kd[0])  # eta = (H/2) cos(omega t) at x = 0
+    a = a * xi
+    # second-order free-surface forcing of each pair (i, j), and its bound solution
+    ki, kj = k[:, None], k[None, :]
+    pair = a[:, None] * a[None, :]
+    forcing = pair * (1j * omega * (-ki * kj * cosh_kd[:, None] * cosh_kd[None, :]
+                                    + ki * sinh_kd[:, None] * kj * sinh_kd[None, :])
+                      - 1j * omega / (2.0 * g) * cosh_kd[:, None]
+                      * kj * (g * kj * cosh_kd[None, :] - omega * omega * sinh_kd[None, :]))
+    q = ki + kj
+    bound = forcing / (g * q * np.sinh(q * d) - 4.0 * omega * omega * np.cosh(q * d))
+    # projections on cosh(K (z + d)) over the depth: of the bound velocity (closed form) ...
+    overlap = ((q * np.sinh(q * d) * math.cosh(big_k * d) - big_k * np.cosh(q * d)
+                * math.sinh(big_k * d)) / (q * q - big_k * big_k))
+    bound_flux = np.sum(1j * q * bound * overlap)
+    # ... and of the paddle's terms (phi_xx = -k^2 phi for every mode)
+    free_mode = np.cosh(big_k * s)
+    phi_xx = (-(k * k) * a) @ mode
+    phi_z = a @ mode_z
+    paddle_flux = ((-0.5 * xi * f * phi_xx + 0.5 * xi * f_z * phi_z) * free_mode) @ w
+    xi2 = (paddle_flux - bound_flux) / (2j * omega * ((f * free_mode) @ w))
+    # X2 = Re(xi2 e^(-2 i omega t)) = Im(xi2) sin(2 omega t) + Re(xi2) cos(2 omega t)
+    return float(abs(xi2)), float(math.atan2(xi2.real, xi2.imag))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -1690,7 +1827,7 @@ def check_wave(
     if theory is None:
         theory = "stokes2" if order == 2 else "linear"
     _choice("theory", theory, REGULAR_THEORIES[1:])
-    law = regular_paddle_motion(H, T, d, paddle, order, 0.0, g)
+    law = regular_paddle_motion(H, T, d, paddle, 1, 0.0, g)
     k = law.wavenumber
     kd = k * d
     L = 2.0 * math.pi / k

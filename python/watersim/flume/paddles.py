@@ -62,6 +62,11 @@ def _optional_bool(field: str, value: object) -> None:
         raise SceneError(f"{field}: expected true, false or nothing, got {value!r}")
 
 
+def _check_order(order: object) -> None:
+    if isinstance(order, bool) or order not in (1, 2):
+        raise SceneError(f"paddle.order: must be 1 or 2, got {order!r}")
+
+
 class _Paddle:
     """What every wave-maker tells the scene (each class overrides what differs)."""
 
@@ -70,6 +75,7 @@ class _Paddle:
     TAG: ClassVar[str]
     CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"ramp": RAMPS}
     """The allowed values of the paddle's string fields."""
+    order: int
     ramp_periods: float
     ramp: str
     max_stroke: float | None
@@ -80,6 +86,12 @@ class _Paddle:
     def hinged_transfer(self, k: npt.ArrayLike, depth: float) -> npt.NDArray[np.float64] | None:
         """H/S of this paddle at wavenumbers ``k`` when wave theory's piston or bottom-hinged flap
         does not describe it (a flap hinged above the floor), else None."""
+        return None
+
+    def second_order_stroke(self, height: float, period: float, depth: float,
+                            g: float) -> tuple[float, float] | None:
+        """``(amplitude, phase)`` of the second harmonic of this paddle's regular-wave law when
+        wave theory's piston or bottom-hinged flap does not describe it, else None."""
         return None
 
     def back_room(self, backward: float, top: float, depth: float) -> float:
@@ -176,8 +188,7 @@ class Piston(_Paddle):
 
     def __post_init__(self) -> None:
         _optional_bool("paddle.absorption", self.absorption)
-        if isinstance(self.order, bool) or self.order not in (1, 2):
-            raise SceneError(f"paddle.order: must be 1 or 2, got {self.order!r}")
+        _check_order(self.order)
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
         _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
         if self.max_stroke is not None:
@@ -188,10 +199,12 @@ class Piston(_Paddle):
 class Flap(_Paddle):
     """A flap wave-maker: the paddle rotates about a horizontal hinge at height ``hinge_z``;
     below the hinge it is a fixed wall. Its displacement X is set at the still-water level
-    (``theta = atan(X / (depth - hinge_z))``). First-order generation only.
+    (``theta = atan(X / (depth - hinge_z))``).
 
     Attributes:
         hinge_z: hinge height above the floor [m]; ``None``: on the floor (a bottom-hinged flap).
+        order: 1 (Biesel) or 2 (Schaffer's 1996 second-order correction, regular waves only:
+            :func:`watersim.wave_theory.second_order_stroke`).
         ramp_periods: start-up ramp length in wave periods; 0 for none.
         ramp: ``"linear"`` or ``"tanh"``.
         absorption: active wave absorption, as :class:`Piston`'s.
@@ -200,12 +213,12 @@ class Flap(_Paddle):
     """
 
     hinge_z: float | None = None
+    order: int = 1
     ramp_periods: float = 2.0
     ramp: str = "linear"
     absorption: bool | None = None
     max_stroke: float | None = None
 
-    order: ClassVar[int] = 1
     kind: ClassVar[wt.Paddle] = "flap"
     TAG: ClassVar[str] = kind
 
@@ -213,6 +226,7 @@ class Flap(_Paddle):
         _optional_bool("paddle.absorption", self.absorption)
         if self.hinge_z is not None:
             _set(self, "hinge_z", _non_negative("paddle.hinge_z", self.hinge_z))
+        _check_order(self.order)
         _set(self, "ramp_periods", _non_negative("paddle.ramp_periods", self.ramp_periods))
         _choice("paddle.ramp", self.ramp, self.CHOICES["ramp"])
         if self.max_stroke is not None:
@@ -233,6 +247,12 @@ class Flap(_Paddle):
     def hinged_transfer(self, k: npt.ArrayLike, depth: float) -> npt.NDArray[np.float64] | None:
         if self.hinge > 0.0:
             return flap_height_to_stroke_hinged(k, depth, self.hinge)
+        return None
+
+    def second_order_stroke(self, height: float, period: float, depth: float,
+                            g: float) -> tuple[float, float] | None:
+        if self.hinge > 0.0:
+            return wt.second_order_stroke(height, period, depth, "flap", self.hinge, g=g)
         return None
 
     def back_room(self, backward: float, top: float, depth: float) -> float:

@@ -53,7 +53,7 @@ class _Wave:
         """Refuse a paddle the generation theory of this wave does not cover."""
         if paddle.order == 2:
             raise SceneError(
-                "paddle.order: second-order (Madsen 1971) generation is for regular waves only; "
+                "paddle.order: second-order generation is for regular waves only; "
                 "use order=1"
             )
 
@@ -139,8 +139,9 @@ class RegularWave(_Wave):
                                 self.generation_theory(paddle, depth, g))
 
     def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
-        """Biesel's first-order stroke, with Madsen's (1971) second harmonic for
-        ``"stokes2"``, or the stream-function law's harmonics; all times ``stroke_gain``."""
+        """Biesel's first-order stroke, with the second harmonic for ``"stokes2"`` (Madsen's
+        1971 for a piston, Schaffer's 1996 for a flap), or the stream-function law's harmonics;
+        all times ``stroke_gain``."""
         if self.generation_theory(paddle, depth, g) == "stream_function":
             return self._stream_function_law(paddle, depth, g)
         try:
@@ -159,15 +160,18 @@ class RegularWave(_Wave):
         # elevation is in phase with the paddle's velocity), plus Stokes' bound second harmonic
         # (H/2 cos + a2 cos 2theta, crest at theta = 0) where the paddle generates it
         target = [[0.5 * self.height, law.omega, law.phase + 0.5 * math.pi]]
+        second_order, psi = law.second_order_amplitude, law.second_order_phase
         if law.second_order_amplitude != 0.0:
-            components.append([law.second_order_amplitude * gain, 2.0 * law.omega,
-                               2.0 * law.phase])
+            hinged = paddle.second_order_stroke(self.height, self.period, depth, g)
+            if hinged is not None:
+                second_order, psi = hinged
+            components.append([second_order * gain, 2.0 * law.omega, 2.0 * law.phase + psi])
             bound = float(wt.stokes2_second_harmonic_amplitude(self.height, law.wavenumber, depth))
             target.append([bound, 2.0 * law.omega, 2.0 * law.phase + 0.5 * math.pi])
         return paddle.harmonic_law(
             components, sum(abs(c[0]) for c in components), self.period,
             design_height=self.height, stroke=stroke * gain,
-            second_order_amplitude=law.second_order_amplitude * gain,
+            second_order_amplitude=second_order * gain,
             absorption_target=target, absorption_gain=law.omega * stroke * gain / self.height,
         )
 
