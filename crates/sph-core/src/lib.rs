@@ -7,6 +7,7 @@
 
 pub mod absorption;
 pub mod boundary;
+mod diagnostics;
 pub mod error;
 pub mod geometry;
 pub mod kernel;

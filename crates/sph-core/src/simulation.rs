@@ -9,6 +9,7 @@ use rayon::prelude::*;
 mod advance;
 use advance::Rule;
 
+use crate::diagnostics::Diagnostics;
 use crate::error::{Error, InstabilityKind, Result};
 use crate::geometry;
 use crate::kernel::Kernel;
@@ -231,9 +232,6 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     energy0: (Real, Real),
 }
 
-/// Steps between two evaluations of the energy monitor.
-const ENERGY_CHECK_EVERY: u64 = 50;
-
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
@@ -334,7 +332,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             n_excluded: 0,
             energy0: (0.0, 0.0),
         };
-        solver.energy0 = (solver.fluid_energy(), solver.fluid_energy() - solver.floor_energy_offset());
+        solver.energy0 = solver.diagnostics().energy_baseline(solver.scene.tank.min[D::DIM - 1]);
         if let Some(paddle) = &solver.scene.paddle {
             let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
             let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
@@ -384,89 +382,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         });
     }
 
-
-    /// Kinetic plus potential energy of the fluid still in the domain [J].
-    pub fn fluid_energy(&self) -> Real {
-        let fs = self.p.fluid_start();
-        let (g, m) = (self.c.gravity, self.c.mass);
-        let p = &self.p;
-        // fixed chunks reduced in order: the sum does not depend on the thread count
-        const CHUNK: usize = 4096;
-        let chunks: Vec<Real> = p.pos[fs..]
-            .par_chunks(CHUNK)
-            .zip(p.vel[fs..].par_chunks(CHUNK))
-            .zip(p.kind[fs..].par_chunks(CHUNK))
-            .map(|((x, v), k)| {
-                (0..x.len())
-                    .filter(|&i| k[i] == KIND_FLUID)
-                    .map(|i| m * (0.5 * v[i].length_squared() + g * x[i].vertical()))
-                    .sum::<Real>()
-            })
-            .collect();
-        chunks.iter().sum()
-    }
-
-    /// Potential energy the fluid would have with every particle on the tank floor [J].
-    fn floor_energy_offset(&self) -> Real {
-        let n = self.p.kind[self.p.fluid_start()..].iter().filter(|&&k| k == KIND_FLUID).count();
-        n as Real * self.c.mass * self.c.gravity * self.scene.tank.min[D::DIM - 1]
-    }
-
-    /// Errors when more fluid particles left the domain (the sweep excludes them) than the
-    /// scene's lost fraction allows.
-    fn check_lost_fraction(&self) -> Result<()> {
-        let fs = self.p.fluid_start();
-        let limit = self.scene.lost_fraction_limit * self.p.n_fluid() as Real;
-        if self.n_excluded as Real > limit {
-            let first = (fs..self.p.len())
-                .filter(|&i| self.p.kind[i] == KIND_EXCLUDED)
-                .min_by_key(|&i| self.p.id[i]);
-            return Err(self.instability(
-                InstabilityKind::OutOfDomain,
-                first,
-                format!(
-                    "{} of {} fluid particles left the domain (limit {:.2} %)",
-                    self.n_excluded,
-                    self.p.n_fluid(),
-                    100.0 * self.scene.lost_fraction_limit
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// Energy monitor for unforced scenes.
-    fn check_energy(&self) -> Result<()> {
-        if self.scene.paddle.is_some() || !self.steps.is_multiple_of(ENERGY_CHECK_EVERY) {
-            return Ok(());
-        }
-        let (e0, pot0) = self.energy0;
-        let e = self.fluid_energy();
-        let allowed = e0 + self.scene.energy_growth_limit * pot0.abs().max(Real::MIN_POSITIVE);
-        if e > allowed {
-            // name the fastest fluid particle (lowest slot on ties)
-            let fs = self.p.fluid_start();
-            let fastest = (fs..self.p.len())
-                .filter(|&i| self.p.kind[i] != KIND_EXCLUDED)
-                .fold(None, |best: Option<(Real, usize)>, i| {
-                    let v2 = self.p.vel[i].length_squared();
-                    match best {
-                        Some((b, _)) if !(v2 > b) => best,
-                        _ => Some((v2, i)),
-                    }
-                })
-                .map(|(_, i)| i);
-            return Err(self.instability(
-                InstabilityKind::EnergyGrowth,
-                fastest,
-                format!(
-                    "fluid energy {e:.6e} J exceeds its initial {e0:.6e} J by {:.2} % of the initial potential energy",
-                    100.0 * (e - e0) / pot0.abs().max(Real::MIN_POSITIVE)
-                ),
-            ));
-        }
-        Ok(())
-    }
 
     fn new_record(&self, g: &GaugeSpec) -> GaugeRecord {
         let points = g.sample_points(D::DIM);
@@ -730,6 +645,16 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         timer.lap(Phase::SortPermute);
     }
 
+    /// Kinetic plus potential energy of the fluid still in the domain [J].
+    pub fn fluid_energy(&self) -> Real {
+        self.diagnostics().fluid_energy()
+    }
+
+    /// The checks' view of the present state.
+    fn diagnostics(&self) -> Diagnostics<'_, D> {
+        Diagnostics { p: &self.p, c: &self.c, step: self.steps, time: self.time }
+    }
+
     /// The particle arrays (storage order).
     pub fn particles(&self) -> &Particles<D> {
         &self.p
@@ -789,39 +714,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             // the particle whose limit set the step (force or viscous/acoustic)
             let slot = if dt_f < lim.min_dt_cv { lim.acc_slot } else { lim.cv_slot };
             let slot = (slot < self.p.len()).then_some(slot);
-            return Err(self.instability(
+            return Err(self.diagnostics().instability(
                 InstabilityKind::TimeStepCollapse,
                 slot,
                 format!("time step {dt:e} s below the floor {:e} s", self.dt_floor),
             ));
         }
         Ok(dt)
-    }
-
-    fn instability(&self, kind: InstabilityKind, slot: Option<usize>, message: String) -> Error {
-        let slot = slot.unwrap_or(self.p.fluid_start().min(self.p.len().saturating_sub(1)));
-        Error::Instability {
-            kind,
-            step: self.steps,
-            time: self.time,
-            particle: self.p.id[slot],
-            position: self.p.pos[slot].as_slice().to_vec(),
-            message,
-        }
-    }
-
-    /// The NaN or density-band monitor's error for the particle in `slot` (see `advance.rs`).
-    fn monitor_error(&self, slot: usize, kind: InstabilityKind) -> Error {
-        let (lo, hi) = self.c.density_limits();
-        let message = match kind {
-            InstabilityKind::NonFinite => "position, velocity or density is not finite".to_string(),
-            _ => format!(
-                "density {:.3} kg/m^3 outside [{lo:.3}, {hi:.3}] (rho0 -+ {:.2} %)",
-                self.p.rho[slot],
-                self.c.density_band * 100.0
-            ),
-        };
-        self.instability(kind, Some(slot), message)
     }
 
     /// Active absorption: the paddle's correction for the step starting now, from the surface
@@ -881,12 +780,14 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         timer.lap(Phase::Sweep);
         self.n_excluded += found.newly_excluded;
         if let Some((_, slot, kind)) = found.bad {
-            return Err(self.monitor_error(slot, kind));
+            return Err(self.diagnostics().monitor_error(slot, kind));
         }
         if found.newly_excluded > 0 {
-            self.check_lost_fraction()?;
+            self.diagnostics().check_lost_fraction(self.n_excluded, self.scene.lost_fraction_limit)?;
         }
-        self.check_energy()?;
+        if self.scene.paddle.is_none() {
+            self.diagnostics().check_energy(self.energy0, self.scene.energy_growth_limit)?;
+        }
         if !self.gauges.is_empty() {
             self.sample_gauges();
         }

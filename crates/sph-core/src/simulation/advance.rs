@@ -12,6 +12,7 @@
 //! lowest bad id whichever chunk holds it.
 
 use super::{ShiftState, Solver};
+use crate::diagnostics::find_unstable;
 use crate::error::InstabilityKind;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -114,7 +115,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                     return Findings::default();
                 }
                 Findings {
-                    bad: monitor(pos, vel, rho, &ids[slots.clone()], band).map(|(id, j, kind)| (id, start + j, kind)),
+                    bad: find_unstable(pos, vel, rho, &ids[slots.clone()], band).map(|(id, j, kind)| (id, start + j, kind)),
                     newly_excluded: exclude::<D>(&mut kind[walls..], &mut vel[walls..], &pos[walls..], domain),
                 }
             },
@@ -190,30 +191,6 @@ fn damp<V: Vector>(d: Damping, dt: Real, pos: &[V], vel: &mut [V]) {
             *v = *v * (1.0 - dt * d.strength * s * s).max(0.0);
         }
     }
-}
-
-/// The NaN/inf and density-band monitor over a run of slots: the bad slot of lowest id, as
-/// `(id, index in the run, kind)`. A branch-free test of the whole run first, which vectorises;
-/// only a run that fails it is searched slot by slot.
-fn monitor<V: Vector>(pos: &[V], vel: &[V], rho: &[Real], ids: &[u32], (lo, hi): (Real, Real)) -> Option<(u32, usize, InstabilityKind)> {
-    // NaN fails both density compares
-    let in_band = |r: Real| (r >= lo) & (r <= hi);
-    let ok = pos.iter().zip(vel).zip(rho).fold(true, |ok, ((x, v), &r)| ok & x.is_finite() & v.is_finite() & in_band(r));
-    if ok {
-        return None;
-    }
-    (0..pos.len())
-        .filter_map(|j| {
-            let finite = pos[j].is_finite() && vel[j].is_finite() && rho[j].is_finite();
-            if !finite {
-                Some((ids[j], j, InstabilityKind::NonFinite))
-            } else if !in_band(rho[j]) {
-                Some((ids[j], j, InstabilityKind::DensityOutOfRange))
-            } else {
-                None
-            }
-        })
-        .min_by_key(|&(id, _, _)| id)
 }
 
 /// Freezes the fluid particles of a run of slots that left the `domain` box; returns how many.
