@@ -35,8 +35,9 @@ What is built (the core's scene, see ``crates/sph-core/src/scene/``):
   ``(toe, 0) -> (x_top, height)`` continued flat at the tank top; or, in 3D, a closed triangle
   mesh (:class:`MeshBeach`, from an STL file), passed to the core as a mesh obstacle;
 - the paddle: a piston or a flap (hinged at ``hinge_z``), driven by a motion law whose
-  coefficients come from :mod:`watersim.wave_theory` (Biesel transfer functions, Madsen's second
-  order, spectral synthesis, Goring's solitary wave), or a tabulated displacement;
+  coefficients come from :mod:`watersim.wave_theory` (Biesel transfer functions, Madsen's and
+  Schaffer's second order, Fenton's stream-function wave, spectral synthesis, focused groups,
+  Goring's solitary wave), or a tabulated displacement;
 - an optional velocity damping zone at the far end (on by default in a flume without beach);
 - the gauges, all sampled by the core at their own interval.
 
