@@ -4,10 +4,17 @@
 //! t = 0), and records the actual time. Interpolation is Shepard-normalised SPH over fluid
 //! particles: `f(x) = sum_b V_b W(x - x_b) f_b / sum_b V_b W(x - x_b)`, `V_b = m / rho_b`.
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::math::Real;
+use crate::kernel::Kernel;
+use crate::math::{Dim, Real, Vector};
+use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::particles::Particles;
+use crate::physics::eos::pressure;
+use crate::physics::Constants;
+use crate::scene::BoxSpec;
 
 /// How a free-surface gauge finds the surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -185,4 +192,214 @@ pub struct GaugeRecord {
     /// Window grid shape (`n`), empty otherwise.
     pub shape: Vec<usize>,
     pub next_time: Real,
+}
+
+impl GaugeRecord {
+    /// An empty record of the gauge `g` in a scene of dimension `dim`.
+    pub fn new(g: &GaugeSpec, dim: usize) -> Self {
+        let points = g.sample_points(dim);
+        let width = match g {
+            GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => 1,
+            _ => points.len() * (dim + 1),
+        };
+        GaugeRecord {
+            name: g.name().to_string(),
+            kind: g.kind(),
+            t: Vec::new(),
+            values: Vec::new(),
+            width,
+            points: points.into_iter().flatten().collect(),
+            shape: if let GaugeSpec::Window { n, .. } = g { n.clone() } else { Vec::new() },
+            next_time: 0.0,
+        }
+    }
+}
+
+trait NanIfInfinite {
+    fn pipe_nan(self) -> Self;
+}
+impl NanIfInfinite for Real {
+    /// `-inf` (an empty maximum) becomes NaN: "no water here".
+    fn pipe_nan(self) -> Self {
+        if self.is_finite() {
+            self
+        } else {
+            Real::NAN
+        }
+    }
+}
+
+/// Half-width, in dp, of the band around a particle-method gauge line. Seed 001 uses dp/2, but a
+/// band exactly one spacing wide misses the column whenever two particles straddle the line at
+/// a hair more than dp/2; 0.75 dp always holds one.
+const PARTICLE_GAUGE_HALF_WIDTH: Real = 0.75;
+
+/// What the gauges read, and nothing they could change: the particles, their cell grid (sorted
+/// at the last force evaluation), the kernel, the run's constants and the tank. A motion law
+/// can read a gauge through it before the paddle moves (active absorption).
+pub struct ProbeView<'a, D: Dim, K: Kernel> {
+    pub p: &'a Particles<D>,
+    pub grid: &'a CellGrid<D>,
+    pub kernel: &'a K,
+    pub c: &'a Constants,
+    pub tank: &'a BoxSpec,
+}
+
+impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
+    /// Shepard sums at `x`: kernel volume sum, and the normalised density, pressure, velocity.
+    pub fn shepard(&self, x: D::V) -> (Real, Real, Real, D::V) {
+        let support2 = self.c.support * self.c.support;
+        let p = &self.p;
+        let (mut w_sum, mut rho, mut pr, mut vel) = (0.0, 0.0, 0.0, D::V::ZERO);
+        self.grid.for_each_near(GROUP_FLUID, x, |b| {
+            let r2 = (x - p.pos[b]).length_squared();
+            if r2 >= support2 {
+                return;
+            }
+            let vw = self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
+            w_sum += vw;
+            rho += vw * p.rho[b];
+            pr += vw * pressure(self.c, p.rho[b]);
+            vel += p.vel[b] * vw;
+        });
+        if w_sum > 0.0 {
+            (w_sum, rho / w_sum, pr / w_sum, vel * (1.0 / w_sum))
+        } else {
+            (0.0, 0.0, 0.0, D::V::ZERO)
+        }
+    }
+
+    /// Kernel volume sum `sum_b (m_b / rho_b) W(x - x_b)` over the particles of the groups `groups`.
+    fn volume_sum(&self, groups: &[usize], x: D::V) -> Real {
+        let support2 = self.c.support * self.c.support;
+        let p = &self.p;
+        let mut sum = 0.0;
+        for &g in groups {
+            self.grid.for_each_near(g, x, |b| {
+                let r2 = (x - p.pos[b]).length_squared();
+                if r2 < support2 {
+                    sum += self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
+                }
+            });
+        }
+        sum
+    }
+
+    /// How full of water the space at `x` is: the fluid's kernel volume sum over the share of the
+    /// kernel that the walls leave free, `S_fluid / (1 - S_wall)`. Away from walls this is the
+    /// plain fluid sum of DESIGN.md section 4 (surface where it is 0.5); next to a side wall or
+    /// a bed the walls' particles fill up to half of the kernel (a quarter is left in the corner
+    /// of two walls), and the plain sum would read a full column there as half empty. The free
+    /// share is floored at that corner's 1/4 so that points inside a wall do not turn wet on a
+    /// trace of fluid.
+    fn wet_fraction(&self, x: D::V) -> Real {
+        let fluid = self.volume_sum(&[GROUP_FLUID], x);
+        if fluid <= 0.0 {
+            return 0.0;
+        }
+        let wall = self.volume_sum(&[GROUP_FIXED, GROUP_MOVING], x);
+        fluid / (1.0 - wall).max(0.25)
+    }
+
+    /// Along the points `a + (b - a) s`, s from 0 to 1 every dp/2, the last point (from `b`
+    /// backwards) where the wet fraction ([`Self::wet_fraction`]) reaches 0.5, linearly
+    /// interpolated; returns that point's vertical coordinate, or NaN if no point is wet.
+    pub fn last_wet_along(&self, a: D::V, b: D::V) -> Real {
+        let len = (b - a).length();
+        let n = ((len / (0.5 * self.c.dp)).ceil() as usize).max(1);
+        let at = |i: usize| a + (b - a) * (i as Real / n as Real);
+        let top = self.wet_fraction(at(n));
+        if top >= 0.5 {
+            return at(n).vertical();
+        }
+        let mut above = (at(n), top);
+        for i in (0..n).rev() {
+            let x = at(i);
+            let w = self.wet_fraction(x);
+            if w >= 0.5 {
+                let s = (w - 0.5) / (w - above.1).max(Real::EPSILON);
+                return (x + (above.0 - x) * s.clamp(0.0, 1.0)).vertical();
+            }
+            above = (x, w);
+        }
+        Real::NAN
+    }
+
+    /// Highest vertical coordinate of fluid particles accepted by `near`, or NaN.
+    fn highest_fluid(&self, near: impl Fn(D::V) -> bool + Sync) -> Real {
+        let fs = self.p.fluid_start();
+        self.p.pos[fs..]
+            .par_iter()
+            .filter(|&&x| near(x))
+            .map(|x| x.vertical())
+            .reduce(|| Real::NEG_INFINITY, Real::max)
+            .pipe_nan()
+    }
+
+    /// Samples every gauge of `specs` whose next sample time has come at time `t` into its
+    /// record (`records` in the order of `specs`).
+    pub fn sample_due(&self, specs: &[GaugeSpec], records: &mut [GaugeRecord], t: Real) {
+        let up = D::DIM - 1;
+        let half = 0.5 * self.c.dp;
+        for (rec, spec) in records.iter_mut().zip(specs) {
+            if t < rec.next_time {
+                continue;
+            }
+            match spec {
+                GaugeSpec::Elevation { position, method, .. } => {
+                    let mut foot = D::V::from_slice(position);
+                    let z = match method {
+                        SurfaceMethod::Kernel => {
+                            foot.set(up, self.tank.min[up]);
+                            let mut top = foot;
+                            top.set(up, self.tank.max[up]);
+                            self.last_wet_along(foot, top)
+                        }
+                        SurfaceMethod::Particle => {
+                            let h2 = PARTICLE_GAUGE_HALF_WIDTH * PARTICLE_GAUGE_HALF_WIDTH * self.c.dp * self.c.dp;
+                            let z = self.highest_fluid(|x| {
+                                let mut d = x - foot;
+                                d.set(up, 0.0);
+                                d.length_squared() <= h2
+                            });
+                            z + half
+                        }
+                    };
+                    rec.values.push(z);
+                }
+                GaugeSpec::Runup { start, end, method, .. } => {
+                    let (a, b) = (D::V::from_slice(start), D::V::from_slice(end));
+                    let z = match method {
+                        SurfaceMethod::Kernel => self.last_wet_along(a, b),
+                        SurfaceMethod::Particle => {
+                            let band2 = (3.0 * half) * (3.0 * half);
+                            let ab = b - a;
+                            let inv = 1.0 / ab.length_squared();
+                            self.highest_fluid(|x| {
+                                let s = ((x - a).dot(ab) * inv).clamp(0.0, 1.0);
+                                (x - (a + ab * s)).length_squared() <= band2
+                            })
+                        }
+                    };
+                    rec.values.push(z);
+                }
+                GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
+                    let values: Vec<Real> = rec
+                        .points
+                        .par_chunks(D::DIM)
+                        .flat_map_iter(|pt| {
+                            let (w, _, _, v) = self.shepard(D::V::from_slice(pt));
+                            v.as_slice().iter().copied().chain(std::iter::once(w)).collect::<Vec<_>>()
+                        })
+                        .collect();
+                    rec.values.extend_from_slice(&values);
+                }
+            }
+            rec.t.push(t);
+            let interval = spec.interval();
+            while rec.next_time <= t {
+                rec.next_time += interval;
+            }
+        }
+    }
 }

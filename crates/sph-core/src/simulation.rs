@@ -20,31 +20,12 @@ use crate::boundary::{wall_model, WallModel};
 use crate::motion::{Paddle, PaddlePose};
 use crate::phases::{self, Phase};
 use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, PERMUTE_BLOCK, KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
-use crate::probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
+use crate::probes::{GaugeRecord, ProbeView};
 use crate::threads::with_workers_polling;
 use crate::physics::eos::{density_at_pressure, pressure};
 use crate::physics::forces::{fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
 use crate::scene::{Integrator, Scene};
-
-trait NanIfInfinite {
-    fn pipe_nan(self) -> Self;
-}
-impl NanIfInfinite for Real {
-    /// `-inf` (an empty maximum) becomes NaN: "no water here".
-    fn pipe_nan(self) -> Self {
-        if self.is_finite() {
-            self
-        } else {
-            Real::NAN
-        }
-    }
-}
-
-/// Half-width, in dp, of the band around a particle-method gauge line. Seed 001 uses dp/2, but a
-/// band exactly one spacing wide misses the column whenever two particles straddle the line at
-/// a hair more than dp/2; 0.75 dp always holds one.
-const PARTICLE_GAUGE_HALF_WIDTH: Real = 0.75;
 
 /// Cells of half the kernel support: fewer candidate pairs than `2h` cells (see `neighbours.rs`).
 const NEIGHBOUR_REACH: usize = 2;
@@ -341,7 +322,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 solver.absorber = Some(AbsorberState::default());
             }
         }
-        solver.gauges = solver.scene.gauges.iter().map(|g| solver.new_record(g)).collect();
+        solver.gauges = solver.scene.gauges.iter().map(|g| GaugeRecord::new(g, D::DIM)).collect();
         solver.move_boundaries(0.0);
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
@@ -382,183 +363,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         });
     }
 
-
-    fn new_record(&self, g: &GaugeSpec) -> GaugeRecord {
-        let points = g.sample_points(D::DIM);
-        let width = match g {
-            GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => 1,
-            _ => points.len() * (D::DIM + 1),
-        };
-        GaugeRecord {
-            name: g.name().to_string(),
-            kind: g.kind(),
-            t: Vec::new(),
-            values: Vec::new(),
-            width,
-            points: points.into_iter().flatten().collect(),
-            shape: if let GaugeSpec::Window { n, .. } = g { n.clone() } else { Vec::new() },
-            next_time: 0.0,
-        }
-    }
-
-    /// Shepard sums at `x`: kernel volume sum, and the normalised density, pressure, velocity.
-    fn shepard(&self, x: D::V) -> (Real, Real, Real, D::V) {
-        let support2 = self.c.support * self.c.support;
-        let p = &self.p;
-        let (mut w_sum, mut rho, mut pr, mut vel) = (0.0, 0.0, 0.0, D::V::ZERO);
-        self.grid.for_each_near(GROUP_FLUID, x, |b| {
-            let r2 = (x - p.pos[b]).length_squared();
-            if r2 >= support2 {
-                return;
-            }
-            let vw = self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
-            w_sum += vw;
-            rho += vw * p.rho[b];
-            pr += vw * pressure(&self.c, p.rho[b]);
-            vel += p.vel[b] * vw;
-        });
-        if w_sum > 0.0 {
-            (w_sum, rho / w_sum, pr / w_sum, vel * (1.0 / w_sum))
-        } else {
-            (0.0, 0.0, 0.0, D::V::ZERO)
-        }
-    }
-
-    /// Kernel volume sum `sum_b (m_b / rho_b) W(x - x_b)` over the particles of the groups `groups`.
-    fn volume_sum(&self, groups: &[usize], x: D::V) -> Real {
-        let support2 = self.c.support * self.c.support;
-        let p = &self.p;
-        let mut sum = 0.0;
-        for &g in groups {
-            self.grid.for_each_near(g, x, |b| {
-                let r2 = (x - p.pos[b]).length_squared();
-                if r2 < support2 {
-                    sum += self.c.mass / p.rho[b] * self.kernel.w(r2.sqrt());
-                }
-            });
-        }
-        sum
-    }
-
-    /// How full of water the space at `x` is: the fluid's kernel volume sum over the share of the
-    /// kernel that the walls leave free, `S_fluid / (1 - S_wall)`. Away from walls this is the
-    /// plain fluid sum of DESIGN.md section 4 (surface where it is 0.5); next to a side wall or
-    /// a bed the walls' particles fill up to half of the kernel (a quarter is left in the corner
-    /// of two walls), and the plain sum would read a full column there as half empty. The free
-    /// share is floored at that corner's 1/4 so that points inside a wall do not turn wet on a
-    /// trace of fluid.
-    fn wet_fraction(&self, x: D::V) -> Real {
-        let fluid = self.volume_sum(&[GROUP_FLUID], x);
-        if fluid <= 0.0 {
-            return 0.0;
-        }
-        let wall = self.volume_sum(&[GROUP_FIXED, GROUP_MOVING], x);
-        fluid / (1.0 - wall).max(0.25)
-    }
-
-    /// Along the points `a + (b - a) s`, s from 0 to 1 every dp/2, the last point (from `b`
-    /// backwards) where the wet fraction ([`Self::wet_fraction`]) reaches 0.5, linearly
-    /// interpolated; returns that point's vertical coordinate, or NaN if no point is wet.
-    fn last_wet_along(&self, a: D::V, b: D::V) -> Real {
-        let len = (b - a).length();
-        let n = ((len / (0.5 * self.c.dp)).ceil() as usize).max(1);
-        let at = |i: usize| a + (b - a) * (i as Real / n as Real);
-        let top = self.wet_fraction(at(n));
-        if top >= 0.5 {
-            return at(n).vertical();
-        }
-        let mut above = (at(n), top);
-        for i in (0..n).rev() {
-            let x = at(i);
-            let w = self.wet_fraction(x);
-            if w >= 0.5 {
-                let s = (w - 0.5) / (w - above.1).max(Real::EPSILON);
-                return (x + (above.0 - x) * s.clamp(0.0, 1.0)).vertical();
-            }
-            above = (x, w);
-        }
-        Real::NAN
-    }
-
-    /// Highest vertical coordinate of fluid particles accepted by `near`, or NaN.
-    fn highest_fluid(&self, near: impl Fn(D::V) -> bool + Sync) -> Real {
-        let fs = self.p.fluid_start();
-        self.p.pos[fs..]
-            .par_iter()
-            .filter(|&&x| near(x))
-            .map(|x| x.vertical())
-            .reduce(|| Real::NEG_INFINITY, Real::max)
-            .pipe_nan()
-    }
-
-    /// Records every gauge whose next sample time has come.
-    fn sample_gauges(&mut self) {
-        let t = self.time;
-        let up = D::DIM - 1;
-        let half = 0.5 * self.c.dp;
-        let mut records = std::mem::take(&mut self.gauges);
-        for (rec, spec) in records.iter_mut().zip(&self.scene.gauges) {
-            if t < rec.next_time {
-                continue;
-            }
-            match spec {
-                GaugeSpec::Elevation { position, method, .. } => {
-                    let mut foot = D::V::from_slice(position);
-                    let z = match method {
-                        SurfaceMethod::Kernel => {
-                            foot.set(up, self.scene.tank.min[up]);
-                            let mut top = foot;
-                            top.set(up, self.scene.tank.max[up]);
-                            self.last_wet_along(foot, top)
-                        }
-                        SurfaceMethod::Particle => {
-                            let h2 = PARTICLE_GAUGE_HALF_WIDTH * PARTICLE_GAUGE_HALF_WIDTH * self.c.dp * self.c.dp;
-                            let z = self.highest_fluid(|x| {
-                                let mut d = x - foot;
-                                d.set(up, 0.0);
-                                d.length_squared() <= h2
-                            });
-                            z + half
-                        }
-                    };
-                    rec.values.push(z);
-                }
-                GaugeSpec::Runup { start, end, method, .. } => {
-                    let (a, b) = (D::V::from_slice(start), D::V::from_slice(end));
-                    let z = match method {
-                        SurfaceMethod::Kernel => self.last_wet_along(a, b),
-                        SurfaceMethod::Particle => {
-                            let band2 = (3.0 * half) * (3.0 * half);
-                            let ab = b - a;
-                            let inv = 1.0 / ab.length_squared();
-                            self.highest_fluid(|x| {
-                                let s = ((x - a).dot(ab) * inv).clamp(0.0, 1.0);
-                                (x - (a + ab * s)).length_squared() <= band2
-                            })
-                        }
-                    };
-                    rec.values.push(z);
-                }
-                GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
-                    let values: Vec<Real> = rec
-                        .points
-                        .par_chunks(D::DIM)
-                        .flat_map_iter(|pt| {
-                            let (w, _, _, v) = self.shepard(D::V::from_slice(pt));
-                            v.as_slice().iter().copied().chain(std::iter::once(w)).collect::<Vec<_>>()
-                        })
-                        .collect();
-                    rec.values.extend_from_slice(&values);
-                }
-            }
-            rec.t.push(t);
-            let interval = spec.interval();
-            while rec.next_time <= t {
-                rec.next_time += interval;
-            }
-        }
-        self.gauges = records;
-    }
 
     /// Pairs one fluid force evaluation sums over: each fluid particle that is not excluded with
     /// every other particle, of any group, closer than the support, at the present positions.
@@ -643,6 +447,18 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let arrays = Carried { vectors: [pos, vel, hist_v], reals: [rho, hist_r], id, kind };
         permute_carried(arrays, range, perm, ranks, moved, gather);
         timer.lap(Phase::SortPermute);
+    }
+
+    /// Records every gauge whose next sample time has come.
+    fn sample_gauges(&mut self) {
+        let mut records = std::mem::take(&mut self.gauges);
+        self.probes().sample_due(&self.scene.gauges, &mut records, self.time);
+        self.gauges = records;
+    }
+
+    /// The gauges' view of the present state.
+    fn probes(&self) -> ProbeView<'_, D, K> {
+        ProbeView { p: &self.p, grid: &self.grid, kernel: &self.kernel, c: &self.c, tank: &self.scene.tank }
     }
 
     /// Kinetic plus potential energy of the fluid still in the domain [J].
@@ -741,7 +557,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         foot.set(up, tank.min[up]);
         let mut top = foot;
         top.set(up, tank.max[up]);
-        let surface = self.last_wet_along(foot, top);
+        let surface = self.probes().last_wet_along(foot, top);
         let eta = surface.is_finite().then(|| surface - self.paddle_levels.1);
         self.absorber = Some(absorption.advance(state, t, eta));
     }
@@ -970,9 +786,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             return Err(Error::invalid("points", format!("coordinates must be finite, got {x}")));
         }
         let m = points.len() / D::DIM;
+        let probes = self.probes();
         let rows: Vec<(Real, Real, Real, D::V)> = (0..m)
             .into_par_iter()
-            .map(|i| self.shepard(D::V::from_slice(&points[i * D::DIM..(i + 1) * D::DIM])))
+            .map(|i| probes.shepard(D::V::from_slice(&points[i * D::DIM..(i + 1) * D::DIM])))
             .collect();
         let mut out = Interpolated::default();
         for (w, rho, pr, v) in rows {
