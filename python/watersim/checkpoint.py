@@ -174,7 +174,7 @@ class LastGood:
 
     def _energy_within_limit(self, sim: Simulation, state: Mapping[str, Any]) -> bool:
         """The energy-growth test of the core's monitor (``check_energy`` in
-        crates/sph-core/src/simulation.rs), on a checkpoint."""
+        crates/sph-core/src/diagnostics.rs), on a checkpoint."""
         scene = sim.scene
         if scene.get("paddle") is not None:
             return True  # the monitor is off: a paddle does work on the fluid

@@ -138,7 +138,7 @@ class SceneBuilder:
 
     _ENERGY_MONITOR: ClassVar[bool] = True
     """Whether the core's energy monitor runs for this scene (it skips scenes with a paddle,
-    ``check_energy`` in ``crates/sph-core/src/simulation.rs``), so ``energy_growth_limit`` means
+    ``check_energy`` in ``crates/sph-core/src/diagnostics.rs``), so ``energy_growth_limit`` means
     something."""
 
     def __post_init__(self) -> None:

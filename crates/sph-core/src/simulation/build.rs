@@ -1,0 +1,144 @@
+//! Building a solver from a scene: particles sampled and initialised hydrostatically, the grid,
+//! the integrator's history, the wall model, the paddle and the gauges.
+
+use super::{History, Scratch, ShiftState, Solver, NEIGHBOUR_REACH};
+use crate::absorption::AbsorberState;
+use crate::boundary::wall_model;
+use crate::error::Result;
+use crate::geometry;
+use crate::kernel::Kernel;
+use crate::math::{Dim, Real, Vector};
+use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::particles::{Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING, PERMUTE_BLOCK};
+use crate::physics::eos::density_at_pressure;
+use crate::physics::{Constants, VISC_LAMINAR_SPS};
+use crate::probes::GaugeRecord;
+use crate::scene::{Integrator, Scene};
+
+impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+    pub fn new(scene: Scene) -> Result<Self> {
+        scene.validate()?;
+        let c = Constants::new(&scene);
+        let kernel = K::new(c.h, D::DIM);
+        let geometry::Sampled { walls, wall_surface, fluid, fluid_surface, moving, moving_surface } =
+            geometry::sample::<D>(&scene)?;
+        let n_fixed = walls.len();
+        let n_moving = moving.len();
+        let n = n_fixed + n_moving + fluid.len();
+        let up = D::DIM - 1;
+
+        let hydrostatic = |surface: Real, z: Real| -> Real {
+            density_at_pressure(&c, c.rho0 * c.gravity * (surface - z).max(0.0))
+        };
+        let mut pos = Vec::with_capacity(n);
+        let mut rho = Vec::with_capacity(n);
+        for (p, s) in walls.iter().zip(&wall_surface).chain(moving.iter().zip(&moving_surface)) {
+            pos.push(*p);
+            rho.push(s.map_or(c.rho0, |s| hydrostatic(s, p.get(up))));
+        }
+        for (p, &s) in fluid.iter().zip(&fluid_surface) {
+            pos.push(*p);
+            rho.push(hydrostatic(s, p.get(up)));
+        }
+        // The sampled lattice (about 40 bytes a particle) is dead once copied: freed before the
+        // other arrays are allocated, building peaks below running (docs/benchmarks.md).
+        drop((walls, wall_surface, fluid, fluid_surface, moving_surface));
+        let mut kind = vec![KIND_FIXED; n_fixed];
+        kind.resize(n_fixed + n_moving, KIND_MOVING);
+        kind.resize(n, KIND_FLUID);
+        let n_fluid = n - n_fixed - n_moving;
+        let p = Particles::<D> {
+            pos,
+            vel: vec![D::V::ZERO; n],
+            rho,
+            id: (0..n as u32).collect(),
+            kind,
+            acc: vec![D::V::ZERO; n_fluid],
+            drho: vec![0.0; n],
+            n_fixed,
+            n_moving,
+        };
+
+        // Grid: the tank plus its walls, and as much again above the tank for splashes.
+        let layers = scene.layers() as Real * scene.dp;
+        let mut lo = D::V::from_slice(&scene.tank.min) - D::V::splat(layers);
+        let mut hi = D::V::from_slice(&scene.tank.max) + D::V::splat(layers);
+        let height = scene.tank.max[up] - scene.tank.min[up];
+        hi.set(up, hi.get(up) + height);
+        lo = lo.min(hi);
+        let grid = CellGrid::<D>::new(lo, hi, c.support, NEIGHBOUR_REACH);
+
+        let history = match scene.integrator {
+            Integrator::Symplectic => History::Symplectic {
+                vel0: vec![D::V::ZERO; n],
+                rho0: vec![0.0; n],
+            },
+            Integrator::Verlet { euler_every } => {
+                History::Verlet { vel_prev: p.vel.clone(), rho_prev: p.rho.clone(), euler_every }
+            }
+        };
+        let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
+        let shift = scene.shifting.map(|sh| ShiftState {
+            a_h: sh.coefficient * c.h,
+            threshold: sh.threshold(D::DIM),
+            grad: vec![D::V::ZERO; n_fluid],
+            div: vec![0.0; n_fluid],
+        });
+        // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
+        let dt_floor = 1e-6 * c.h / c.c0;
+        // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
+        let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
+        let blocks = n.div_ceil(PERMUTE_BLOCK);
+        let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
+        let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
+        let mut solver = Self {
+            scene,
+            c,
+            kernel,
+            p,
+            grid,
+            history,
+            tau,
+            shift,
+            scratch,
+            time: 0.0,
+            steps: 0,
+            dt: 0.0,
+            dt_floor,
+            moving_ref: moving,
+            paddle_levels: (0.0, 0.0),
+            paddle_time: 0.0,
+            absorber: None,
+            walls,
+            gauges: Vec::new(),
+            domain: (lo, hi),
+            n_excluded: 0,
+            energy0: (0.0, 0.0),
+        };
+        solver.energy0 = solver.diagnostics().energy_baseline(solver.scene.tank.min[D::DIM - 1]);
+        if let Some(paddle) = &solver.scene.paddle {
+            let hinge = paddle.hinge_z.unwrap_or(solver.scene.tank.min[up]);
+            let swl = paddle.swl_z.unwrap_or_else(|| solver.scene.still_water_level());
+            solver.paddle_levels = (hinge, swl);
+            if paddle.absorption.is_some() {
+                solver.absorber = Some(AbsorberState::default());
+            }
+        }
+        solver.gauges = solver.scene.gauges.iter().map(|g| GaugeRecord::new(g, D::DIM)).collect();
+        solver.move_boundaries(0.0);
+        // Fixed walls never move: sort them once.
+        solver.sort_group(GROUP_FIXED);
+        solver.grid.forget_slot_cells(GROUP_FIXED);
+        solver.sort_group(GROUP_MOVING);
+        solver.sort_group(GROUP_FLUID);
+        // a group without particles needs no cell starts (the groups' sizes never change)
+        for g in [GROUP_FIXED, GROUP_MOVING, GROUP_FLUID] {
+            if solver.group_range(g).is_empty() {
+                solver.grid.release_group(g);
+            }
+        }
+        solver.sample_gauges();
+        Ok(solver)
+    }
+
+}

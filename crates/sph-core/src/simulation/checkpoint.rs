@@ -1,0 +1,125 @@
+//! Checkpoint and restore: everything needed to continue a run bit for bit.
+
+use super::{flat, History, Solver};
+use crate::absorption::AbsorberState;
+use crate::error::{Error, Result};
+use crate::kernel::Kernel;
+use crate::math::{Dim, Real};
+use crate::neighbours::{GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::probes::GaugeRecord;
+
+/// Everything needed to continue a run exactly: the state in storage order, the integrator's
+/// history, the monitors' baselines and the gauge records. The motion law needs no state of its
+/// own: it is a function of time.
+#[derive(Clone, Debug, Default)]
+pub struct Checkpoint {
+    pub time: Real,
+    pub steps: u64,
+    pub dt: Real,
+    /// Flattened `(N, dim)`.
+    pub positions: Vec<Real>,
+    pub velocities: Vec<Real>,
+    pub densities: Vec<Real>,
+    pub ids: Vec<u32>,
+    pub kinds: Vec<u8>,
+    /// Verlet only: velocities and densities one step back (empty for Symplectic).
+    pub velocities_prev: Vec<Real>,
+    pub densities_prev: Vec<Real>,
+    pub n_excluded: usize,
+    pub energy0: (Real, Real),
+    pub gauges: Vec<GaugeRecord>,
+    /// Active absorption's correction `(offset, rate, since)`; None without absorption.
+    pub paddle_correction: Option<(Real, Real, Real)>,
+}
+
+
+impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+    /// The state to continue this run from ([`Checkpoint`]).
+    pub(super) fn checkpoint_state(&self) -> Checkpoint {
+        let (velocities_prev, densities_prev) = match &self.history {
+            History::Verlet { vel_prev, rho_prev, .. } => (flat(vel_prev).to_vec(), rho_prev.clone()),
+            History::Symplectic { .. } => (Vec::new(), Vec::new()),
+        };
+        Checkpoint {
+            time: self.time,
+            steps: self.steps,
+            dt: self.dt,
+            positions: flat(&self.p.pos).to_vec(),
+            velocities: flat(&self.p.vel).to_vec(),
+            densities: self.p.rho.clone(),
+            ids: self.p.id.clone(),
+            kinds: self.p.kind.clone(),
+            velocities_prev,
+            densities_prev,
+            n_excluded: self.n_excluded,
+            energy0: self.energy0,
+            gauges: self.gauges.clone(),
+            paddle_correction: self.absorber.map(|a| (a.offset, a.rate, a.since)),
+        }
+    }
+    /// Continues from a checkpoint of a run of the same scene.
+    pub(super) fn restore_state(&mut self, c: &Checkpoint) -> Result<()> {
+        let n = self.p.len();
+        let nd = n * D::DIM;
+        let expect = |field: &str, len: usize, want: usize| -> Result<()> {
+            if len == want {
+                Ok(())
+            } else {
+                Err(Error::invalid(
+                    format!("checkpoint.{field}"),
+                    format!("has {len} values, this scene needs {want}: the checkpoint is from another scene"),
+                ))
+            }
+        };
+        expect("positions", c.positions.len(), nd)?;
+        expect("velocities", c.velocities.len(), nd)?;
+        expect("densities", c.densities.len(), n)?;
+        expect("ids", c.ids.len(), n)?;
+        expect("kinds", c.kinds.len(), n)?;
+        expect("gauges", c.gauges.len(), self.gauges.len())?;
+        match (self.absorber.is_some(), c.paddle_correction.is_some()) {
+            (true, false) => return Err(Error::invalid("checkpoint.paddle_correction", "missing: this scene's paddle absorbs waves")),
+            (false, true) => {
+                return Err(Error::invalid("checkpoint.paddle_correction", "this scene's paddle does not absorb waves: the checkpoint is from another scene"));
+            }
+            _ => {}
+        }
+        // ids must be a permutation that keeps every particle in its group
+        let fs = self.p.fluid_start() as u32;
+        let nf = self.p.n_fixed as u32;
+        for (slot, &id) in c.ids.iter().enumerate() {
+            let group_of = |i: u32| if i < nf { 0 } else if i < fs { 1 } else { 2 };
+            if id as usize >= n || group_of(id) != group_of(slot as u32) {
+                return Err(Error::invalid("checkpoint.ids", format!("slot {slot} holds id {id} of another group")));
+            }
+        }
+        if let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history {
+            expect("velocities_prev", c.velocities_prev.len(), nd)?;
+            expect("densities_prev", c.densities_prev.len(), n)?;
+            bytemuck::cast_slice_mut::<D::V, Real>(vel_prev).copy_from_slice(&c.velocities_prev);
+            rho_prev.copy_from_slice(&c.densities_prev);
+        }
+        bytemuck::cast_slice_mut::<D::V, Real>(&mut self.p.pos).copy_from_slice(&c.positions);
+        bytemuck::cast_slice_mut::<D::V, Real>(&mut self.p.vel).copy_from_slice(&c.velocities);
+        self.p.rho.copy_from_slice(&c.densities);
+        self.p.id.copy_from_slice(&c.ids);
+        self.p.kind.copy_from_slice(&c.kinds);
+        self.time = c.time;
+        // a checkpoint is taken between steps, where the paddle stands at its pose of `time`
+        self.paddle_time = c.time;
+        self.steps = c.steps;
+        self.dt = c.dt;
+        self.n_excluded = c.n_excluded;
+        self.energy0 = c.energy0;
+        self.gauges = c.gauges.clone();
+        if let (Some(state), Some((offset, rate, since))) = (&mut self.absorber, c.paddle_correction) {
+            *state = AbsorberState { offset, rate, since };
+        }
+        // The saved order is already sorted: the stable sort keeps it and rebuilds the cells.
+        self.sort_group(GROUP_FIXED);
+        self.grid.forget_slot_cells(GROUP_FIXED);
+        self.sort_group(GROUP_MOVING);
+        self.sort_group(GROUP_FLUID);
+        Ok(())
+    }
+}
