@@ -110,7 +110,9 @@ def test_bad_scenes_are_refused_naming_the_field(kwargs: dict[str, Any], field: 
 
 def test_generation_combinations_the_theory_does_not_cover_are_refused() -> None:
     with pytest.raises(SceneError, match="^paddle.order"):
-        scene(wave=ws.IrregularWave(hs=0.04, tp=1.2), paddle=ws.Piston(order=2))
+        scene(wave=ws.IrregularWave(hs=0.04, tp=1.2), paddle=ws.Flap(order=2))
+    with pytest.raises(SceneError, match="^paddle.order"):
+        scene(wave=ws.SolitaryWave(height=0.05), paddle=ws.Piston(order=2))
     with pytest.raises(SceneError, match="^paddle"):
         scene(wave=ws.SolitaryWave(height=0.05), paddle=ws.Flap())
     with pytest.raises(SceneError, match="^beach"):

@@ -381,4 +381,68 @@ def test_second_order_flap_law() -> None:
         target = scene.law.absorption_target
         assert target is not None and len(target["components"]) == 2  # Stokes' bound harmonic
     with pytest.raises(ws.SceneError, match="^paddle.order: second-order generation is for reg"):
-        flume.scene(ws.IrregularWave(hs=0.03, tp=1.0), paddle=ws.Flap(order=2), dp=0.05)
+        flume.scene(ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.01)), paddle=ws.Flap(order=2),
+                    dp=0.05)
+
+
+# ------------------------------------------------------------------------------------------------
+# second-order spectral generation (piston)
+
+
+def _components(frequencies: list[float], amplitudes: list[float], phases: list[float],
+                depth: float, repeat_period: float) -> wt.IrregularPaddleMotion:
+    f = np.asarray(frequencies)
+    k = np.asarray(wt.wavenumber(1.0 / f, depth))
+    a = np.asarray(amplitudes)
+    return wt.IrregularPaddleMotion("piston", depth, repeat_period, f, k, a,
+                                    a / np.asarray(wt.piston_height_to_stroke(k, depth)),
+                                    np.asarray(phases))
+
+
+@pytest.mark.parametrize("period", [8.0, 3.0, 1.0])
+def test_one_component_is_madsens_second_harmonic(period: float) -> None:
+    second = wt.second_order_piston_motion(_components([1 / period], [0.005], [0.4], 0.5, period))
+    madsen = wt.regular_paddle_motion(0.01, period, 0.5, "piston", 2, 0.4)
+    assert second.frequencies == pytest.approx([2 / period])
+    # X2 sin(2 omega t + 2 delta), Madsen's X2 signed
+    x2 = second.stroke_amplitudes[0] * math.cos(second.stroke_phases[0] - 0.8)
+    assert x2 == pytest.approx(madsen.second_order_amplitude, rel=1e-10)
+    assert math.sin(second.stroke_phases[0] - 0.8) == pytest.approx(0.0, abs=1e-10)
+    # Stokes' bound harmonic, a2 cos(2 omega t + 2 delta)
+    bound = float(wt.stokes2_second_harmonic_amplitude(0.01, madsen.wavenumber, 0.5))
+    assert second.elevation_amplitudes[0] == pytest.approx(bound, rel=1e-10)
+    assert second.elevation_phases[0] == pytest.approx(0.8 + math.pi / 2)
+
+
+@pytest.mark.parametrize("period", [3.0, 1.5, 1.0])
+def test_two_close_components_carry_the_set_down_of_their_group(period: float) -> None:
+    """Longuet-Higgins & Stewart (1962): under a group the mean level falls by
+    ``S_xx / (rho (g d - c_g^2))``, ``S_xx = E (2 c_g / c - 1/2)``; two components of amplitude
+    a beating with their crests together at t = 0 at the paddle give ``-a^2 (2 c_g / c - 1/2)
+    g / (g d - c_g^2) cos(delta omega t)``."""
+    depth, a, repeat = 0.5, 0.005, 200 * period
+    f = 1 / period
+    second = wt.second_order_piston_motion(
+        _components([f - 0.5 / repeat, f + 0.5 / repeat], [a, a], [0.0, 0.0], depth, repeat))
+    assert second.frequencies[0] == pytest.approx(1 / repeat)
+    k = float(wt.wavenumber(period, depth))
+    cg = float(wt.group_velocity(period, depth))
+    set_down = a * a * (2 * cg * k * period / (2 * math.pi) - 0.5) * G / (G * depth - cg**2)
+    # -set_down cos = set_down sin(... - pi/2)
+    assert second.elevation_amplitudes[0] == pytest.approx(set_down, rel=2e-3)
+    assert second.elevation_phases[0] == pytest.approx(-math.pi / 2)
+
+
+def test_second_order_spectral_law() -> None:
+    flume = ws.Flume(length=8.0, depth=0.4, damping=True)
+    first = flume.scene(ws.IrregularWave(hs=0.05, tp=1.5), dp=0.04).law
+    second = flume.scene(ws.IrregularWave(hs=0.05, tp=1.5), paddle=ws.Piston(order=2),
+                         dp=0.04).law
+    n = len(first.law["components"])
+    assert second.law["components"][:n] == first.law["components"]
+    added = wt.second_order_piston_motion(wt.irregular_paddle_motion(0.05, 1.5, 0.4))
+    assert len(second.law["components"]) == n + added.frequencies.size
+    assert second.absorption_target is not None
+    assert len(second.absorption_target["components"]) == n + added.frequencies.size
+    with pytest.raises(ws.SceneError, match="^paddle.order: second-order generation of a spectral"):
+        flume.scene(ws.IrregularWave(hs=0.05, tp=1.5), paddle=ws.Flap(order=2), dp=0.04)

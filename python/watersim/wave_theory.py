@@ -45,6 +45,7 @@ __all__ = [
     "IrregularPaddleMotion",
     "RegularPaddleMotion",
     "SCHAFFER_MODES",
+    "SecondOrderPaddleMotion",
     "StreamFunctionPaddleMotion",
     "StreamFunctionWave",
     "WaveValidityWarning",
@@ -76,6 +77,7 @@ __all__ = [
     "piston_motion",
     "piston_stroke",
     "regular_paddle_motion",
+    "second_order_piston_motion",
     "second_order_stroke",
     "schuttrumpf_runup",
     "solitary_celerity",
@@ -1758,6 +1760,104 @@ def focused_paddle_motion(
     k = np.asarray(wavenumber(1.0 / f, d, g))
     phases = k * x_f - 2.0 * np.pi * f * t_f
     return _through_the_paddle(paddle, d, period_rep, f, amplitudes, phases, g)
+
+
+@dataclass(frozen=True)
+class SecondOrderPaddleMotion:
+    """The second-order (sub- and superharmonic) components of a spectral piston motion.
+
+    ``X2(t) = sum_i stroke_amplitudes[i] sin(2 pi frequencies[i] t + stroke_phases[i])``, and
+    the bound second-order elevation at the paddle is ``sum_i elevation_amplitudes[i]
+    sin(2 pi frequencies[i] t + elevation_phases[i])``.
+
+    Attributes:
+        frequencies: sum and difference frequencies [Hz] (multiples of 1 / repeat period).
+        stroke_amplitudes, stroke_phases: [m], [rad].
+        elevation_amplitudes, elevation_phases: [m], [rad].
+    """
+
+    frequencies: FloatArray
+    stroke_amplitudes: FloatArray
+    stroke_phases: FloatArray
+    elevation_amplitudes: FloatArray
+    elevation_phases: FloatArray
+
+
+def second_order_piston_motion(
+    motion: IrregularPaddleMotion, g: float = G, drop: float = 1e-6
+) -> SecondOrderPaddleMotion:
+    """Second-order piston motion of a spectral wave: for every pair of components the sub- and
+    superharmonic stroke that makes no free wave at their difference and sum frequency.
+
+    Each pair (n, m) of first-order components (``eta = Re(A e^(i (k x - omega t)))`` at the
+    paddle, piston strokes by Biesel) forces the free surface at ``omega_n +- omega_m`` (the
+    second-order combined surface condition, as in :func:`second_order_stroke`); its bound
+    wave has the wavenumber ``k_n +- k_m``. The paddle's second-order motion supplies the
+    bound wave's depth-integrated flux less the first-order paddle's ``X1 d(eta1)/dt`` (Madsen's
+    1971 argument for each pair): without the evanescent near field, the limit Schaffer (1996)
+    shows his full theory tends to. Checks (tests/test_wave_laws.py): a single component gives
+    Madsen's second harmonic and Stokes' bound harmonic exactly; two close components give the
+    set-down under their group of Longuet-Higgins & Stewart (1962). Pairs falling on the same
+    frequency are added; components below ``drop`` times the largest first-order stroke (both
+    stroke and elevation) are dropped.
+
+    Args:
+        motion: a piston's :class:`IrregularPaddleMotion` (irregular or focused).
+        g: gravitational acceleration [m/s^2].
+        drop: relative amplitude below which a component is left out.
+    """
+    if motion.paddle != "piston":
+        raise ValueError("paddle: second-order spectral generation is for a piston")
+    h = motion.depth
+    omega = 2.0 * np.pi * motion.frequencies
+    k = motion.wavenumbers
+    elevation = motion.wave_amplitudes * np.exp(-1j * motion.phases)  # A_n
+    stroke = 1j * motion.stroke_amplitudes * np.exp(-1j * motion.phases)  # X1 = Re(xi e^-iwt)
+    potential = -1j * g * elevation / omega
+    u = 1j * k * potential  # at z = 0: phi_x, phi_z, phi_t, d/dz (phi_tt + g phi_z)
+    w = potential * omega**2 / g
+    phi_t = -1j * omega * potential
+    curvature = potential * k * (g * k - omega**2 * np.tanh(k * h))
+    rate = -1j * omega * elevation  # d(eta1)/dt at the paddle
+    size = round(2.0 * float(np.max(motion.frequencies)) * motion.repeat_period) + 1
+    strokes = np.zeros(size, dtype=np.complex128)
+    bounds = np.zeros(size, dtype=np.complex128)
+    n, m = np.triu_indices(omega.size)
+    higher = omega[n] > omega[m]
+    for sign in (1.0, -1.0):
+        if sign > 0:
+            i, j = n, m
+        else:  # the difference omega_i - omega_j > 0
+            distinct = omega[n] != omega[m]
+            i = np.where(higher, n, m)[distinct]
+            j = np.where(higher, m, n)[distinct]
+        conj = (lambda z: z) if sign > 0 else np.conj
+        self_pair = np.where(i == j, 0.5, 1.0)
+        w2 = omega[i] + sign * omega[j]
+        k2 = k[i] + sign * k[j]
+        gradient = u[i] * conj(u[j]) + w[i] * conj(w[j])
+        forcing = self_pair * (1j * w2 * gradient + (phi_t[i] * conj(curvature[j])
+                                                      + conj(phi_t[j]) * curvature[i]) / (2 * g))
+        bound = forcing / (g * k2 * np.tanh(k2 * h) - w2 * w2)
+        paddle = 0.5 * self_pair * (stroke[i] * conj(rate[j]) + conj(stroke[j]) * rate[i])
+        xi2 = (1j * bound * np.tanh(k2 * h) - paddle) / (-1j * w2 * h)
+        eta2 = -(1j * w2 * -bound + 0.5 * self_pair * gradient + 0.5 * self_pair
+                 * (elevation[i] * conj(-1j * omega[j] * w[j])
+                    + conj(elevation[j]) * (-1j * omega[i] * w[i]))) / g
+        index = np.rint(w2 / (2.0 * np.pi) * motion.repeat_period).astype(np.int64)
+        np.add.at(strokes, index, xi2)
+        np.add.at(bounds, index, eta2)
+    floor = drop * float(np.max(motion.stroke_amplitudes))
+    keep = np.nonzero((np.abs(strokes) > floor) | (np.abs(bounds) > floor))[0]
+    keep = keep[keep > 0]
+    # Re(z e^(-i omega t)) = |z| sin(omega t + pi/2 - arg z)
+    return SecondOrderPaddleMotion(
+        frequencies=keep / motion.repeat_period,
+        stroke_amplitudes=np.abs(strokes[keep]),
+        stroke_phases=0.5 * np.pi - np.angle(strokes[keep]),
+        elevation_amplitudes=np.abs(bounds[keep]),
+        elevation_phases=0.5 * np.pi - np.angle(bounds[keep]),
+    )
 
 
 # ------------------------------------------------------------------------------------------------

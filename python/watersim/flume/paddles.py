@@ -162,9 +162,10 @@ class Piston(_Paddle):
     """A piston wave-maker: the paddle translates along x.
 
     Attributes:
-        order: 1 (Biesel) or 2 (Madsen 1971 second-order correction), for regular waves; the
-            wave's ``theory`` may choose another law (``"auto"``: the stream-function law
-            beyond Madsen's Ursell number).
+        order: 1 (Biesel) or 2: Madsen's (1971) second-order correction for a regular wave
+            (whose ``theory`` may choose another law: ``"auto"``, the stream-function law beyond
+            Madsen's Ursell number), the components' sub- and superharmonics for an irregular or
+            focused wave.
         ramp_periods: start-up ramp length in wave periods (peak periods for irregular waves);
             0 for none. Tabulated and solitary motions have no ramp.
         ramp: ``"linear"`` (``min(1, t / T_r)``) or ``"tanh"`` (``tanh(4 t / T_r)``).

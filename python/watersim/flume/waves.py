@@ -33,6 +33,15 @@ SOLITARY_MAX_H_OVER_D = 0.83
 exist, and Goring's paddle motion for it is meaningless."""
 
 
+class _SpectralWave:
+    """Second-order generation of a spectral wave (irregular, focused): a piston's."""
+
+    def check(self, paddle: Paddle, depth: float) -> None:
+        if paddle.order == 2 and paddle.kind != "piston":
+            raise SceneError("paddle.order: second-order generation of a spectral wave is for a "
+                             "Piston (wave_theory.second_order_piston_motion); use order=1")
+
+
 class _Wave:
     """What every wave tells the scene: its paddle law, defaults and checks (each wave overrides
     what differs)."""
@@ -53,8 +62,8 @@ class _Wave:
         """Refuse a paddle the generation theory of this wave does not cover."""
         if paddle.order == 2:
             raise SceneError(
-                "paddle.order: second-order generation is for regular waves only; "
-                "use order=1"
+                "paddle.order: second-order generation is for regular, irregular and focused "
+                "waves only; use order=1"
             )
 
     def warn(self, paddle: Paddle, depth: float, g: float) -> None:
@@ -228,7 +237,7 @@ def _quantised(amplitudes: npt.NDArray[np.float64]) -> list[float]:
 
 
 @dataclass(frozen=True)
-class IrregularWave(_Wave):
+class IrregularWave(_SpectralWave, _Wave):
     """An irregular wave synthesised from a spectrum (seeded, reproducible; see
     :func:`watersim.wave_theory.irregular_paddle_motion`).
 
@@ -313,7 +322,7 @@ whose paddle motion starts earlier is refused (its front would be cut by the ram
 
 
 @dataclass(frozen=True)
-class FocusedWave(_Wave):
+class FocusedWave(_SpectralWave, _Wave):
     """A focused wave group (NewWave, linear focusing; see
     :func:`watersim.wave_theory.focused_paddle_motion`): the components of a spectrum with
     amplitudes in proportion to it, all crests at ``focus_x`` at ``focus_time``.
@@ -577,7 +586,7 @@ def _check_band(wave: IrregularWave | FocusedWave) -> None:
 def _spectral_law(motion: wt.IrregularPaddleMotion, paddle: Paddle, depth: float, tp: float,
                   gain: float, design_height: float) -> PaddleLaw:
     """The harmonic law of spectral components: each through the paddle's transfer function,
-    times ``gain``."""
+    with a second-order piston's sub- and superharmonics, times ``gain``."""
     amplitudes = np.asarray(motion.stroke_amplitudes)
     transfer = paddle.hinged_transfer(motion.wavenumbers, depth)
     if transfer is not None:
@@ -599,6 +608,15 @@ def _spectral_law(motion: wt.IrregularPaddleMotion, paddle: Paddle, depth: float
     ]
     peak = int(np.argmin(np.abs(np.asarray(motion.frequencies) - 1.0 / tp)))
     absorption = float(omegas[peak] * amplitudes[peak] / motion.wave_amplitudes[peak])
+    if paddle.order == 2:
+        # the pairs' sub- and superharmonics, and their bound waves in the target
+        second = wt.second_order_piston_motion(motion)
+        omegas2 = 2.0 * np.pi * second.frequencies
+        components += [[float(a) * gain, float(w), float(p)] for a, w, p in
+                       zip(second.stroke_amplitudes, omegas2, second.stroke_phases, strict=True)]
+        target += [[float(a), float(w), float(p)] for a, w, p in
+                   zip(second.elevation_amplitudes, omegas2, second.elevation_phases, strict=True)]
+        bound += float(np.sum(second.stroke_amplitudes)) * gain
     return paddle.harmonic_law(components, bound, tp, design_height=design_height,
                                absorption_target=target, absorption_gain=absorption)
 
