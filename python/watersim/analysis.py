@@ -1,4 +1,5 @@
-"""Analysis of wave-flume records: wave heights, harmonics, reflection, phase averages, run-up.
+"""Analysis of wave-flume records: wave heights, harmonics, reflection, phase averages, run-up,
+undertow and crest celerity.
 
 Pure NumPy/SciPy on arrays, no simulation. SI units: elevations in metres relative to the
 still-water level (z = 0 unless stated), times in seconds, frequencies in hertz, phases in
@@ -37,23 +38,27 @@ from .wave_theory import (
 
 __all__ = [
     "BreakingOnset",
+    "CrestCelerity",
     "GaugeSpacingWarning",
     "Harmonics",
     "Overturn",
     "PhaseAverage",
     "ReflectionAnalysis",
     "RunupPerWave",
+    "VerticalMeanFlow",
     "WaterLevelEnvelopes",
     "WaveSpectrum",
     "ZeroCrossingWaves",
     "breaking_onset_from_crests",
     "breaking_onset_from_gauges",
+    "crest_celerity",
     "goda_suzuki",
     "harmonic_analysis",
     "mansard_funke",
     "overturned_surface",
     "phase_average",
     "runup_per_wave",
+    "vertical_mean_flow",
     "water_level_envelopes",
     "wave_spectrum",
     "zero_crossing_waves",
@@ -1082,3 +1087,171 @@ def wave_spectrum(
         tp=1.0 / f_peak if f_peak > 0.0 else math.inf,
         tm01=m0 / m1 if m1 > 0.0 else math.inf,
     )
+
+
+# ------------------------------------------------------------------------------------------------
+# Surf-zone kinematics: mean flow on a vertical, crest celerity
+
+
+@dataclass(frozen=True)
+class VerticalMeanFlow:
+    """The time-averaged horizontal flow on a vertical line of velocity samples.
+
+    Attributes:
+        z: heights of the samples [m], increasing.
+        mean_u: time mean of u, counting the samples when dry as 0 (so that ``mean_u dz`` is the
+            mean volume flux through the height dz) [m/s].
+        wet_fraction: share of the samples each point is wet.
+        trough_level: top of the points wet in every sample (the trough level to the vertical's
+            resolution) [m].
+        undertow: depth average of ``mean_u`` from the bed to the trough level [m/s].
+        flux_below_trough: ``int mean_u dz`` from the bed to the trough level [m^2/s].
+        flux_above_trough: the same above it: the mass transport of the crests (Stokes drift
+            and, in the surf zone, the surface roller) [m^2/s].
+        max_u: the largest horizontal velocity in the water [m/s].
+        n_periods: whole periods averaged.
+    """
+
+    z: FloatArray
+    mean_u: FloatArray
+    wet_fraction: FloatArray
+    trough_level: float
+    undertow: float
+    flux_below_trough: float
+    flux_above_trough: float
+    max_u: float
+    n_periods: int
+
+
+def vertical_mean_flow(
+    u: npt.ArrayLike,
+    wet: npt.ArrayLike,
+    z: npt.ArrayLike,
+    t: npt.ArrayLike,
+    period: float,
+    bed: float = 0.0,
+    n_periods: int | None = None,
+) -> VerticalMeanFlow:
+    """Undertow and mass transport above the trough from velocities on a vertical (seed 002's
+    Table 3 and Figs. 6-7: the time-averaged u(z) and its depth average below the trough).
+
+    Each sample stands for the height between the midpoints to its neighbours (the lowest from
+    the bed, the highest up to half a spacing above it). The mean is over the last ``n_periods``
+    whole periods (all that fit if None) of the uniformly sampled record.
+
+    Args:
+        u: horizontal velocity ``(n_samples, n_points)`` [m/s].
+        wet: ``(n_samples, n_points)``, true where the point is in the water (a probe's
+            ``kernel_sum >= 0.5``).
+        z: heights of the points [m], increasing, above ``bed``.
+        t: sample times [s], uniform.
+        period: wave period T [s].
+        bed: height of the bed under the vertical [m].
+        n_periods: whole periods to average.
+    """
+    mask = np.asarray(wet, dtype=bool)
+    raw = np.asarray(u, dtype=np.float64)
+    if raw.ndim != 2 or mask.shape != raw.shape:
+        raise ValueError(f"u, wet: expected two (n_samples, n_points) arrays, got shapes "
+                         f"{raw.shape} and {mask.shape}")
+    uu = _series("u", np.where(mask, raw, 0.0), 2)  # a dry point's velocity is not used
+    zz = _series("z", z)
+    if zz.shape != (uu.shape[1],) or np.any(np.diff(zz) <= 0.0):
+        raise ValueError(f"z: expected {uu.shape[1]} increasing heights, got {zz.tolist()}")
+    b = float(_finite("bed", bed))
+    if zz[0] <= b:
+        raise ValueError(f"z: the lowest point ({zz[0]:g} m) must be above the bed ({b:g} m)")
+    tt = _times(t, uu.shape[0], "u")
+    segment, n = _whole_period_segment(tt, _scalar_positive("period", period), n_periods)
+    uu, mask = uu[segment], mask[segment]
+    top = zz[-1] + 0.5 * (zz[-1] - zz[-2]) if zz.size > 1 else 2.0 * zz[0] - b
+    edges = np.concatenate([[b], 0.5 * (zz[1:] + zz[:-1]), [top]])
+    heights = np.diff(edges)
+    mean_u = np.mean(np.where(mask, uu, 0.0), axis=0)
+    always = np.all(mask, axis=0)
+    below = int(np.argmin(always)) if not np.all(always) else zz.size
+    trough = float(edges[below])
+    flux_below = float(np.sum(mean_u[:below] * heights[:below]))
+    return VerticalMeanFlow(
+        z=zz,
+        mean_u=mean_u,
+        wet_fraction=np.mean(mask, axis=0),
+        trough_level=trough,
+        undertow=flux_below / (trough - b) if below > 0 else math.nan,
+        flux_below_trough=flux_below,
+        flux_above_trough=float(np.sum(mean_u[below:] * heights[below:])),
+        max_u=float(np.max(np.where(mask, uu, -np.inf))) if np.any(mask) else math.nan,
+        n_periods=n,
+    )
+
+
+@dataclass(frozen=True)
+class CrestCelerity:
+    """Crest speed between neighbouring gauges from their phase-averaged waves.
+
+    Attributes:
+        x: midpoints between the gauges [m].
+        celerity: gauge spacing over the crest's travel time [m/s].
+        shallow_water_speed: ``sqrt(g d)`` with d the mean still-water depth of the two gauges
+            [m/s].
+        ratio: ``celerity / shallow_water_speed``.
+        crest_times: time of the phase-averaged crest within the period at each gauge [s].
+    """
+
+    x: FloatArray
+    celerity: FloatArray
+    shallow_water_speed: FloatArray
+    ratio: FloatArray
+    crest_times: FloatArray
+
+
+def crest_celerity(
+    eta: npt.ArrayLike,
+    t: npt.ArrayLike,
+    x: npt.ArrayLike,
+    depth: npt.ArrayLike,
+    period: float,
+    n_waves: int | None = None,
+    g: float = G,
+) -> CrestCelerity:
+    """Crest celerity along the flume against ``sqrt(g d)`` (seed 002: 70-80 % in the surf
+    zone).
+
+    Each gauge's record is phase-averaged over its last ``n_waves`` whole periods
+    (:func:`phase_average`); the crest is the phase-averaged maximum, placed between samples by
+    a parabola through it and its neighbours. Between neighbouring gauges the crest's travel
+    time is the difference of their crest times, taken modulo T nearest to the time at
+    ``sqrt(g d)`` (so gauges more than a wavelength apart are followed correctly as long as the
+    speed is within half a period of it).
+
+    Args:
+        eta: elevations ``(n_samples, n_gauges)`` [m], gauges in increasing x.
+        t: sample times [s]; x: gauge positions [m], increasing; depth: still-water depth at
+        each gauge [m], > 0; period: T [s]; n_waves: waves to average (default all whole
+        periods).
+    """
+    e = _series("eta", eta, 2)
+    xx = _series("x", x)
+    if e.ndim != 2 or e.shape[1] != xx.size or xx.size < 2:
+        raise ValueError(f"eta: expected (n_samples, {xx.size}) for >= 2 gauges, got {e.shape}")
+    if np.any(np.diff(xx) <= 0.0):
+        raise ValueError("x: gauge positions must increase")
+    d = np.broadcast_to(_positive("depth", depth), xx.shape)
+    T = _scalar_positive("period", period)
+    average = phase_average(e, t, T, n_waves)
+    n = average.times.size
+    peak = np.argmax(average.mean, axis=0)
+    left = average.mean[(peak - 1) % n, np.arange(xx.size)]
+    mid = average.mean[peak, np.arange(xx.size)]
+    right = average.mean[(peak + 1) % n, np.arange(xx.size)]
+    curvature = left - 2.0 * mid + right
+    shift = np.where(curvature < 0.0, 0.5 * (left - right) / np.where(curvature < 0.0,
+                                                                       curvature, -1.0), 0.0)
+    crest = (peak + shift) * (T / n)
+    gap = np.diff(xx)
+    speed = np.sqrt(float(_scalar_positive("g", g)) * 0.5 * (d[1:] + d[:-1]))
+    lag = np.mod(np.diff(crest), T)
+    lag += T * np.round((gap / speed - lag) / T)
+    celerity = gap / lag
+    return CrestCelerity(x=0.5 * (xx[1:] + xx[:-1]), celerity=celerity,
+                         shallow_water_speed=speed, ratio=celerity / speed, crest_times=crest)
