@@ -301,6 +301,16 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
         fluid / (1.0 - wall).max(0.25)
     }
 
+    /// The free surface on the vertical through `x` (its vertical component ignored), from the
+    /// tank's floor to its top: [`Self::last_wet_along`] that line.
+    pub fn surface_above(&self, x: D::V) -> Real {
+        let up = D::DIM - 1;
+        let (mut foot, mut top) = (x, x);
+        foot.set(up, self.tank.min[up]);
+        top.set(up, self.tank.max[up]);
+        self.last_wet_along(foot, top)
+    }
+
     /// Along the points `a + (b - a) s`, s from 0 to 1 every dp/2, the last point (from `b`
     /// backwards) where the wet fraction ([`Self::wet_fraction`]) reaches 0.5, linearly
     /// interpolated; returns that point's vertical coordinate, or NaN if no point is wet.
@@ -347,14 +357,9 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
             }
             match spec {
                 GaugeSpec::Elevation { position, method, .. } => {
-                    let mut foot = D::V::from_slice(position);
+                    let foot = D::V::from_slice(position);
                     let z = match method {
-                        SurfaceMethod::Kernel => {
-                            foot.set(up, self.tank.min[up]);
-                            let mut top = foot;
-                            top.set(up, self.tank.max[up]);
-                            self.last_wet_along(foot, top)
-                        }
+                        SurfaceMethod::Kernel => self.surface_above(foot),
                         SurfaceMethod::Particle => {
                             let h2 = PARTICLE_GAUGE_HALF_WIDTH * PARTICLE_GAUGE_HALF_WIDTH * self.c.dp * self.c.dp;
                             let z = self.highest_fluid(|x| {

@@ -108,19 +108,15 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn absorb(&mut self) {
         let (Some(state), Some(paddle)) = (self.absorber, &self.scene.paddle) else { return };
         let Some(absorption) = &paddle.absorption else { return };
-        let up = D::DIM - 1;
         let (tank, t) = (&self.scene.tank, self.time);
         // the vertical through the face at the still-water level plus the offset, mid-width
         let face = paddle.x + paddle.law.eval(t).0 + state.offset_at(t);
-        let mut foot = D::V::ZERO;
+        let mut x = D::V::ZERO;
         for k in 0..D::DIM {
-            foot.set(k, 0.5 * (tank.min[k] + tank.max[k]));
+            x.set(k, 0.5 * (tank.min[k] + tank.max[k]));
         }
-        foot.set(0, face + absorption.probe_offset);
-        foot.set(up, tank.min[up]);
-        let mut top = foot;
-        top.set(up, tank.max[up]);
-        let surface = self.probes().last_wet_along(foot, top);
+        x.set(0, face + absorption.probe_offset);
+        let surface = self.probes().surface_above(x);
         let eta = surface.is_finite().then(|| surface - self.paddle_levels.1);
         self.absorber = Some(absorption.advance(state, t, eta));
     }
