@@ -142,8 +142,15 @@ def test_kimmoun_case_follows_seed_001() -> None:
     assert (setup.flume.beach.toe, setup.flume.beach.slope) == (4.0, pytest.approx(1 / 15))
     assert isinstance(setup.wave, ws.RegularWave)
     assert (setup.wave.period, setup.wave.height) == (1.275, pytest.approx(2 * 0.057))
-    xs = [g.x for g in setup.gauges]
+    xs = [g.x for g in setup.gauges if isinstance(g, ws.ElevationGauge)]
     assert 4.0 in xs and all(round(14.575 - d, 3) in xs for d in (2.48, 1.42, 0.42))
+    # velocity verticals where the seed gives the crest velocity, bed to above the crest
+    verticals = {g.name: g.points for g in setup.gauges if isinstance(g, ws.VelocityProbe)}
+    assert sorted(verticals) == ["u_x12.175", "u_x13.155"]
+    for name, points in verticals.items():
+        x = float(name[3:])
+        assert all(p[0] == x for p in points)
+        assert points[0][1] > (x - 4.0) / 15.0 and points[-1][1] > 0.705 + 0.057
     assert setup.until == pytest.approx(20 * 1.275)
 
 

@@ -48,6 +48,7 @@ from .flume import (
     ProfileBeach,
     RegularWave,
     SolitaryWave,
+    VelocityProbe,
     elevation_gauges_between,
     lattice_dp,
 )
@@ -185,13 +186,15 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     14.155 m (seed Fig. 5: 248, 142 and 42 cm before the shoreline: incipient breaking,
     splash-up, roller); a line every 0.5 m from 8 to 14.5 m for the envelopes and the breaking
     position; a Mansard-Funke triplet from 1.5 m; and the run-up gauge on the slope. The
-    elevation gauges use seed 001's method (the highest particle). The six gauges 18 cm apart
+    elevation gauges use seed 001's method (the highest particle). Velocity verticals (12
+    points from the bed to the crest) at 240 and 142 cm before the shoreline, where the seed
+    gives the crest velocity against sqrt(g D). The six gauges 18 cm apart
     of the experiment are not placed: the seed does not give where they were. dp = 0.705 / 42 =
     0.016786 m (42 layers, H/dp = 6.8, 33,037 particles, 23,247 fluid), until = 20 periods
     (25.5 s): the coarsest spacing at which the wave plunges with a clear lip (docs/wave-flume.md,
     "The lip against resolution": none at H/dp 4.5, marginal at 5.7; at 6.8 it breaks at 12.1 m
     with H 0.134 m against the seed's 12.1 m and 0.14 m, and the overturn search reports
-    "plunging"). It costs about 25 minutes of CPU; ``--set dp=0.050357`` (0.705 / 14) runs
+    "plunging"). It costs about 25 minutes of CPU; ``--set dp=0.050357143`` (0.705 / 14) runs
     twenty times faster and breaks without a lip.
 
     Numerics: water's laminar viscosity (nu = 1e-6 m^2/s) and Verlet, as flume3d. The flume
@@ -218,6 +221,14 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     gauges = [dataclasses.replace(g, method="particle") for g in _unique_positions(gauges)]
     num = s.numerics(dp=lattice_dp(depth, 0.0168), until=round(20 * wave.period, 3),
                      **nm.FLUME_CASE, **nm.WATER, integrator=nm.Verlet())
+    # velocity verticals where seed 001 reports the crest velocity (1.20 sqrt(g D) measured,
+    # 1.05 in its SPH, 240 cm before the shoreline) and after the splash-up (142 cm)
+    for before_shore in (2.40, 1.42):
+        x = round(shore - before_shore, 3)
+        bed = (x - beach.toe) * beach.slope
+        zs = np.linspace(bed + 0.5 * num["dp"], depth + wave.height, 12)
+        gauges.append(VelocityProbe(points=tuple((x, round(float(z), 4)) for z in zs),
+                                    name=f"u_x{x:.3f}"))
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
