@@ -39,6 +39,9 @@ from .wave_theory import (
 __all__ = [
     "BreakingOnset",
     "CrestCelerity",
+    "CrestVelocity",
+    "MeanLevelBlocks",
+    "PhaseAveragedBreaking",
     "GaugeSpacingWarning",
     "Harmonics",
     "Overturn",
@@ -52,9 +55,12 @@ __all__ = [
     "breaking_onset_from_crests",
     "breaking_onset_from_gauges",
     "crest_celerity",
+    "crest_velocity",
     "goda_suzuki",
+    "breaking_from_phase_averaged_heights",
     "harmonic_analysis",
     "mansard_funke",
+    "mean_level_blocks",
     "overturned_surface",
     "phase_average",
     "runup_per_wave",
@@ -1255,3 +1261,190 @@ def crest_celerity(
     celerity = gap / lag
     return CrestCelerity(x=0.5 * (xx[1:] + xx[:-1]), celerity=celerity,
                          shallow_water_speed=speed, ratio=celerity / speed, crest_times=crest)
+
+
+# ------------------------------------------------------------------------------------------------
+# Long records of regular waves: breaking of the phase-averaged wave, crest velocity, mean-level
+# drift (seed 001 averages 128 waves after 128 waves of spin-up)
+
+
+@dataclass(frozen=True)
+class PhaseAveragedBreaking:
+    """Where the phase-averaged wave first meets a depth-limited breaking criterion.
+
+    Attributes:
+        position: x where ``H / d`` of the phase-averaged wave first reaches ``ratio``, linearly
+            interpolated between the last gauge below it and the first at or above it [m].
+        wave_height: the phase-averaged wave height at ``position`` (interpolated the same way)
+            [m]: the height and the place belong to one wave, the averaged one.
+        depth: still-water depth at ``position`` [m].
+        index: the first gauge (in the given order) at or above the ratio.
+        ratio: the criterion H/d.
+        max_height: the largest phase-averaged height among the gauges [m].
+        max_height_position: where it is [m].
+    """
+
+    position: float
+    wave_height: float
+    depth: float
+    index: int
+    ratio: float
+    max_height: float
+    max_height_position: float
+
+
+def breaking_from_phase_averaged_heights(
+    positions: npt.ArrayLike,
+    heights: npt.ArrayLike,
+    depths: npt.ArrayLike,
+    ratio: float = MCCOWAN_BREAKING_RATIO,
+) -> PhaseAveragedBreaking | None:
+    """The breaking point of a regular wave train from the heights of its phase-averaged wave
+    (crest to trough of :func:`phase_average` at each gauge): the first gauge along +x with
+    ``H / d >= ratio`` (McCowan's 0.78 by default), the crossing interpolated linearly from the
+    gauge before it. Gauges with ``d <= 0`` or a non-finite height are skipped. None when no
+    gauge reaches the ratio.
+    """
+    x = _finite("positions", positions).ravel()
+    h = np.asarray(heights, dtype=np.float64).ravel()
+    d = _finite("depths", depths).ravel()
+    if not (x.shape == h.shape == d.shape):
+        raise ValueError(f"heights, depths: expected {x.size} values each, got {h.size} and {d.size}")
+    r = _scalar_positive("ratio", ratio)
+    use = [int(i) for i in np.argsort(x, kind="stable") if d[i] > 0.0 and math.isfinite(h[i])]
+    if not use:
+        return None
+    top = max(use, key=lambda i: h[i])
+    prev: int | None = None
+    for i in use:
+        if h[i] / d[i] >= r:
+            if prev is None:
+                pos, height, depth = x[i], h[i], d[i]
+            else:
+                q0, q1 = h[prev] / d[prev], h[i] / d[i]
+                s = (r - q0) / (q1 - q0)
+                pos = x[prev] + s * (x[i] - x[prev])
+                height = h[prev] + s * (h[i] - h[prev])
+                depth = d[prev] + s * (d[i] - d[prev])
+            return PhaseAveragedBreaking(float(pos), float(height), float(depth), i, r,
+                                         float(h[top]), float(x[top]))
+        prev = i
+    return None
+
+
+@dataclass(frozen=True)
+class CrestVelocity:
+    """Horizontal velocity under the crest and the trough on a vertical line, regular waves.
+
+    Attributes:
+        crest: the largest value of the phase-averaged highest horizontal velocity in the
+            water column [m/s] (seed 001: 1.20 sqrt(g D) measured, 1.05 in its SPH).
+        trough: the lowest value of the phase-averaged lowest horizontal velocity [m/s]
+            (seed 001: -0.40 sqrt(g D) under the troughs).
+        crest_per_wave: each wave period's highest velocity in the water column [m/s].
+        sqrt_gd: ``sqrt(g D)`` with the still-water depth D [m/s].
+        n_waves: whole periods averaged.
+    """
+
+    crest: float
+    trough: float
+    crest_per_wave: FloatArray
+    sqrt_gd: float
+    n_waves: int
+
+
+def crest_velocity(
+    u: npt.ArrayLike,
+    wet: npt.ArrayLike,
+    t: npt.ArrayLike,
+    period: float,
+    depth: float,
+    n_waves: int | None = None,
+    g: float = G,
+) -> CrestVelocity:
+    """Crest and trough velocities on a vertical: at each sample the highest and the lowest u
+    among the wet points (samples with none are left out), phase-averaged over whole periods (:func:`phase_average`), and the
+    highest per period.
+
+    Args:
+        u: horizontal velocity [m/s], shape (n_samples, n_points).
+        wet: whether each point is in the water, same shape (e.g. kernel sum >= 0.5).
+        t: times [s], strictly increasing.
+        period: wave period T [s].
+        depth: still-water depth D at the vertical [m], for ``sqrt(g D)``.
+        n_waves: average the last n_waves periods; default all whole ones.
+    """
+    uu = _series("u", u, min_ndim=2)
+    w = np.asarray(wet, dtype=bool)
+    if uu.ndim != 2 or w.shape != uu.shape:
+        raise ValueError(f"u, wet: expected two arrays of one shape (n_samples, n_points), "
+                         f"got {uu.shape} and {w.shape}")
+    tt = _times(t, uu.shape[0], "u")
+    D = _scalar_positive("depth", depth)
+    # samples with no wet point (a thin swash layer under the lowest point) are left out: the
+    # phase average interpolates in time between the samples kept
+    keep = w.any(axis=1)
+    if np.count_nonzero(keep) < 2:
+        raise ValueError("wet: fewer than two samples have a wet point on the vertical")
+    uu, w, tt = uu[keep], w[keep], tt[keep]
+    top = np.where(w, uu, -np.inf).max(axis=1)
+    bottom = np.where(w, uu, np.inf).min(axis=1)
+    highest = phase_average(top, tt, period, n_waves)
+    lowest = phase_average(bottom, tt, period, n_waves)
+    per_wave = runup_per_wave(top, tt, period, 0.0, highest.n_waves)
+    return CrestVelocity(
+        crest=float(np.max(highest.mean)),
+        trough=float(np.min(lowest.mean)),
+        crest_per_wave=per_wave.values,
+        sqrt_gd=math.sqrt(g * D),
+        n_waves=highest.n_waves,
+    )
+
+
+@dataclass(frozen=True)
+class MeanLevelBlocks:
+    """The mean water level over consecutive blocks of whole periods.
+
+    Attributes:
+        starts: start time of each block [s].
+        means: the mean level over each block [m].
+        block_periods: periods per block.
+        spread: ``max(means) - min(means)`` [m]: how far the mean level wanders over the record.
+        drift: ``means[-1] - means[0]`` [m].
+    """
+
+    starts: FloatArray
+    means: FloatArray
+    block_periods: int
+    spread: float
+    drift: float
+
+
+def mean_level_blocks(
+    eta: npt.ArrayLike, t: npt.ArrayLike, period: float, block_periods: int
+) -> MeanLevelBlocks:
+    """Mean level of a gauge record over consecutive blocks of ``block_periods`` whole periods
+    from the first whole period (``[j T, (j + block_periods) T)``, time averages by the
+    trapezoid rule), to see whether the level drifts over a long run (a paddle's mean position
+    creeping, water lost or reflected set-up building up)."""
+    e = _series("eta", eta)
+    if e.ndim != 1:
+        raise ValueError(f"eta: expected a 1-D record, got shape {e.shape}")
+    tt = _times(t, e.size, "eta")
+    T = _scalar_positive("period", period)
+    if not isinstance(block_periods, (int, np.integer)) or block_periods < 1:
+        raise ValueError(f"block_periods: must be a positive integer, got {block_periods!r}")
+    first, last, available = _whole_waves(tt, T, 0.0, None, "eta")
+    n_blocks = available // int(block_periods)
+    if n_blocks < 1:
+        raise ValueError(f"eta: the record holds {available} whole periods, fewer than "
+                         f"block_periods = {block_periods}")
+    starts = (first + np.arange(n_blocks) * block_periods) * T
+    means = np.empty(n_blocks)
+    # the record's own sampling, at least 16 points a period
+    per_period = max(16, round(T / float(np.median(np.diff(tt)))))
+    for b, start in enumerate(starts):
+        grid = np.linspace(start, start + block_periods * T, per_period * block_periods + 1)
+        means[b] = _trapezoid(np.interp(grid, tt, e), grid) / (block_periods * T)
+    return MeanLevelBlocks(starts=starts, means=means, block_periods=int(block_periods),
+                           spread=float(np.ptp(means)), drift=float(means[-1] - means[0]))

@@ -537,6 +537,19 @@ def headline(case: str, analysis: dict[str, Any]) -> list[str]:
         lines.append(f"  plunging: the surface overturned first at t = {first['time']:.2f} s, "
                      f"x = {first['x_min']:.2f}-{first['x_max']:.2f} m "
                      f"({br['overturn']['seen']} of {br['overturn']['checks']} samples)")
+    pa = br.get("phase_averaged") or {}
+    if pa.get("position") is not None:
+        lines.append(f"  breaking of the phase-averaged wave ({pa['n_waves']} waves): "
+                     f"x = {pa['position']:.2f} m, H = {pa['wave_height']:.4f} m there")
+    for v in analysis.get("velocity_verticals") or []:
+        if v.get("crest_velocity") is not None:
+            lines.append(f"  {v['name']}: crest u = {v['crest_velocity_over_sqrt_gD']:.2f}, "
+                         f"trough u = {v['trough_velocity_over_sqrt_gD']:.2f} sqrt(g D)")
+    mwl = analysis.get("mean_level_near_paddle") or {}
+    if mwl.get("spread") is not None:
+        lines.append(f"  mean level at {mwl['gauge']}: spread {mwl['spread']:.4f} m "
+                     f"({100 * mwl['spread_over_H']:.1f} % of H) over "
+                     f"{len(mwl['block_means'])} blocks of {mwl['block_periods']} periods")
     ru = analysis.get("runup") or {}
     if ru.get("mean") is not None:
         lines.append(f"  run-up: mean {ru['mean']:.4f} m, std {ru['std']:.4f} m over "

@@ -1,4 +1,6 @@
-"""The wave analysis of a flume run: wave statistics, envelopes, breaking, run-up, reflection."""
+"""The wave analysis of a flume run: wave statistics, envelopes, breaking, run-up, reflection,
+and for long regular-wave records the phase-averaged breaking point, the crest velocity on
+velocity verticals and the drift of the mean level near the paddle."""
 
 from __future__ import annotations
 
@@ -41,7 +43,12 @@ UNITS: dict[str, str] = {
     "max_height_position": "m", "iribarren": "1", "slope": "1", "max": "m", "R2": "m",
     "std": "m", "values": "m", "mean_over_H": "1", "std_over_H": "1", "coefficient": "1",
     "incident_amplitude": "m", "reflected_amplitude": "m", "period": "s", "height": "m",
-    "wavelength": "m", "ramp_duration": "s", "stroke": "m",
+    "wavelength": "m", "ramp_duration": "s", "stroke": "m", "depth": "m",
+    "distance_to_shoreline": "m", "profile": "m", "sqrt_gD": "m/s", "crest_velocity": "m/s",
+    "trough_velocity": "m/s", "crest_velocity_over_sqrt_gD": "1",
+    "trough_velocity_over_sqrt_gD": "1", "crest_velocity_per_wave_mean": "m/s",
+    "crest_velocity_per_wave_std": "m/s", "block_starts": "s", "block_means": "m",
+    "spread": "m", "drift": "m", "spread_over_H": "1", "drift_over_H": "1",
 }
 """The units of analysis.json's quantities, by key wherever it appears ("1": a pure number;
 elevations and levels are relative to the still-water level, times from the start of the run)."""
@@ -198,6 +205,15 @@ def analyse_flume(
       the ``x_min``/``x_max`` over all, the most ``columns``) and ``breaker_type_observed``:
       ``"plunging"`` when the surface overturned, else None (spilling, or no breaking
       resolved).
+      For regular waves ``phase_averaged``: the same criterion met by the phase-averaged wave
+      of each gauge's window (``position`` interpolated between gauges, ``wave_height`` and
+      ``depth`` there, ``distance_to_shoreline``, ``max_height`` and its position, the
+      ``profile`` of phase-averaged heights, ``n_waves``): a height and a place of one wave.
+    - ``velocity_verticals`` (regular waves, velocity probes on a vertical): ``crest_velocity``
+      and ``trough_velocity`` (phase-averaged highest and lowest u in the water column), against
+      ``sqrt_gD``, and the per-wave crest velocity's mean and std.
+    - ``mean_level_near_paddle`` (regular waves): the mean level at the gauge nearest the paddle
+      in 8 blocks of whole periods, its ``spread`` and ``drift``, also over H.
     - ``runup`` (with a run-up gauge): per wave (regular: ``mean``, ``std``, ``values``,
       ``mean_over_H``) or overall (``max``; ``R2`` for irregular waves).
     - ``reflection`` (regular or irregular waves, 2-3 gauges over the flat floor between the
@@ -230,6 +246,13 @@ def analyse_flume(
         result["runup"] = _runup(run, runup)
     if (run.regular or run.irregular) and run.period is not None and gauges.names:
         result["reflection"] = _reflection(run)
+    if run.regular:
+        if "breaking" in result:
+            result["breaking"]["phase_averaged"] = _phase_averaged_breaking(run)
+        verticals = _velocity_verticals(run)
+        if verticals:
+            result["velocity_verticals"] = verticals
+        result["mean_level_near_paddle"] = _mean_level_near_paddle(run)
     return result
 
 
@@ -499,4 +522,151 @@ def _reflection(run: _Run) -> dict[str, Any] | None:
         "incident_amplitude": _f(inc),
         "reflected_amplitude": _f(ref),
         "window": [t0, run.end],
+    }
+
+
+# Long records of regular waves (seed 001 averages 128 waves after 128 of spin-up): breaking of
+# the phase-averaged wave, crest velocity on verticals, drift of the mean level near the paddle
+
+MEAN_LEVEL_BLOCKS = 8
+"""Blocks the mean level near the paddle is averaged over, to see it drift."""
+
+MIN_BLOCK_PERIODS = 2
+"""Whole periods a mean-level block needs at the least."""
+
+
+def _phase_averaged_breaking(run: _Run) -> dict[str, Any] | None:
+    """Where the phase-averaged wave first reaches H/d = 0.78 among the wet gauges, and its
+    height there (:func:`watersim.analysis.breaking_from_phase_averaged_heights`); each gauge
+    averages the whole periods of its own steady window. None (with a note) without two wet
+    gauges with a window of :data:`MIN_WINDOW_PERIODS`."""
+    gauges, t, eta, T = run.gauges, run.t, run.eta, run.period
+    if T is None or not eta.size:
+        return None
+    xs, heights, depths, waves = [], [], [], []
+    for j in np.argsort(gauges.x, kind="stable"):
+        x, depth = float(gauges.x[j]), float(gauges.still_depth[j])
+        t0 = run.window_start(x)
+        sel = t >= t0
+        if depth <= 0.0 or run.too_short(t0) is not None or np.count_nonzero(sel) < 4:
+            continue
+        series = eta[sel, j]
+        if not np.all(np.isfinite(series)):
+            continue
+        pa = an.phase_average(series, t[sel], T)
+        xs.append(x)
+        heights.append(float(np.ptp(pa.mean)))
+        depths.append(depth)
+        waves.append(pa.n_waves)
+    if len(xs) < 2:
+        run.notes.append("breaking.phase_averaged: not computed; fewer than two wet gauges "
+                         "with a steady window")
+        return None
+    # the gauges on the slope (and the last one over the flat floor) when there are two
+    on_slope = [i for i, d in enumerate(depths) if d < run.depth - 1e-9]
+    if len(on_slope) >= 2:
+        keep = list(range(max(0, on_slope[0] - 1), len(xs)))
+        xs, heights, depths, waves = ([v[i] for i in keep] for v in (xs, heights, depths, waves))
+    out: dict[str, Any] = {
+        "criterion": f"H/d >= {wt.MCCOWAN_BREAKING_RATIO} of the phase-averaged wave",
+        "n_waves": min(waves),
+        "profile": {"x": xs, "height": heights, "still_depth": depths},
+    }
+    found = an.breaking_from_phase_averaged_heights(xs, heights, depths)
+    if found is None:
+        run.notes.append("breaking.phase_averaged: the phase-averaged wave stays below "
+                         f"H/d = {wt.MCCOWAN_BREAKING_RATIO} at every gauge")
+        out["position"] = None
+        k = int(np.argmax(heights))
+        out.update(max_height=heights[k], max_height_position=xs[k])
+        return out
+    shore = run.setup.shoreline
+    out.update(position=found.position, wave_height=found.wave_height, depth=found.depth,
+               max_height=found.max_height, max_height_position=found.max_height_position)
+    if shore is not None:
+        out["distance_to_shoreline"] = shore - found.position
+    return out
+
+
+def _velocity_verticals(run: _Run) -> list[dict[str, Any]]:
+    """For each velocity probe laid on a vertical (every point at one x) over wet bed: the crest
+    and trough velocities (:func:`watersim.analysis.crest_velocity`) over its steady window, and
+    against ``sqrt(g D)``."""
+    out: list[dict[str, Any]] = []
+    T = run.period
+    if T is None:
+        return out
+    g = run.setup.g
+    for name, record in run.gauges.velocity.items():
+        points = np.asarray(record.points)
+        x = float(points[0, 0])
+        if not np.allclose(points[:, 0], x) or points.shape[0] < 2:
+            continue
+        depth = float(np.asarray(run.setup.still_depth(x)).ravel()[0])
+        entry: dict[str, Any] = {"name": name, "x": x, "still_depth": depth}
+        out.append(entry)
+        t0 = run.window_start(x)
+        needed = run.too_short(t0)
+        sel = record.t >= t0
+        if depth <= 0.0:
+            run.notes.append(f"{name}: no crest velocity; the vertical stands on a dry bed")
+            continue
+        if needed is not None or np.count_nonzero(sel) < 4:
+            entry["needs_until"] = needed
+            run.notes.append(run.short_note(f"{name} crest velocity", t0, needed or t0,
+                                            "the ramp, the waves' arrival and one period"))
+            continue
+        u = np.asarray(record.velocity)[sel, :, 0]
+        wet = np.asarray(record.kernel_sum)[sel] >= 0.5
+        cv = _caught(functools.partial(an.crest_velocity, u, wet, record.t[sel], T, depth,
+                                       g=g), run.notes, name)
+        if cv is None:
+            continue
+        entry.update(
+            window=[t0, float(record.t[-1])],
+            n_waves=cv.n_waves,
+            sqrt_gD=cv.sqrt_gd,
+            crest_velocity=cv.crest,
+            trough_velocity=cv.trough,
+            crest_velocity_over_sqrt_gD=cv.crest / cv.sqrt_gd,
+            trough_velocity_over_sqrt_gD=cv.trough / cv.sqrt_gd,
+            crest_velocity_per_wave_mean=float(np.mean(cv.crest_per_wave)),
+            crest_velocity_per_wave_std=float(np.std(cv.crest_per_wave)),
+        )
+    return out
+
+
+def _mean_level_near_paddle(run: _Run) -> dict[str, Any] | None:
+    """The mean water level at the gauge nearest the paddle over the flat floor, in
+    :data:`MEAN_LEVEL_BLOCKS` blocks of whole periods of its steady window, and how far it
+    wanders against the wave height; None when the steady window holds fewer than
+    ``MEAN_LEVEL_BLOCKS * MIN_BLOCK_PERIODS`` periods."""
+    gauges, t, eta, T = run.gauges, run.t, run.eta, run.period
+    height = run.law.design_height
+    flat = [j for j in range(len(gauges.names)) if gauges.still_depth[j] >= run.depth - 1e-9]
+    if T is None or not flat or not eta.size or not height:
+        return None
+    j = min(flat, key=lambda k: gauges.x[k])
+    x = float(gauges.x[j])
+    t0 = run.window_start(x)
+    sel = t >= t0
+    periods = int((run.end - t0) // T)
+    block = periods // MEAN_LEVEL_BLOCKS
+    if block < MIN_BLOCK_PERIODS:
+        # a drift is a long run's question: a short run gets None and no note
+        return None
+    blocks = _caught(functools.partial(an.mean_level_blocks, eta[sel, j], t[sel], T, block),
+                     run.notes, "mean_level_near_paddle")
+    if blocks is None:
+        return None
+    return {
+        "gauge": gauges.names[j],
+        "x": x,
+        "block_periods": blocks.block_periods,
+        "block_starts": [float(s) for s in blocks.starts],
+        "block_means": [_f(m) for m in blocks.means],
+        "spread": blocks.spread,
+        "drift": blocks.drift,
+        "spread_over_H": blocks.spread / height,
+        "drift_over_H": blocks.drift / height,
     }
