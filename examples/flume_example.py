@@ -2,7 +2,8 @@
 
 Command line, running a :class:`watersim.FlumeSimulation` and writing its results, the gauge
 records in a small ``records.npz`` (so the figures can be redrawn with ``--replot`` without
-running again), and the figures both examples draw: phase-averaged gauges and water-level
+running again; ``--from-run DIR`` draws a ``watersim run`` folder of the same case instead), and
+the figures both examples draw: phase-averaged gauges and water-level
 envelopes with the wave height along the flume.
 
 Units: metres, seconds; elevations above the still-water level (SWL).
@@ -63,7 +64,17 @@ def parse_args(
     p.add_argument("--replot", action="store_true",
                    help="redraw the figures from OUT/records.npz and OUT/analysis.json "
                         "without running")
+    p.add_argument("--from-run", metavar="DIR", default=None,
+                   help="analyse and draw a `watersim run` of the same case (its last "
+                        "checkpoint), e.g. the built-in case run for 350 s, into --out")
+    p.add_argument("--t-start", type=float, default=None, metavar="T",
+                   help="with --from-run: start every gauge's analysis window at T [s] "
+                        "(e.g. the last 128 waves of a 350 s run: 350 - 128 T)")
     args = p.parse_args(argv)
+    if args.t_start is not None and args.from_run is None:
+        p.error("--t-start: only with --from-run")
+    if args.from_run is not None and args.replot:
+        p.error("--from-run: draws from the run folder; leave out --replot")
     if not (np.isfinite(args.dp) and args.dp > 0):
         p.error(f"--dp: must be a positive number of metres, got {args.dp!r}")
     if depth is not None and lattice_dp(depth, args.dp) != args.dp:
@@ -161,7 +172,9 @@ def run_flume(
     """
     out = Path(args.out)
     flume, kwargs = make(args.dp, args.periods)
-    if args.replot:
+    if args.from_run is not None:
+        scene, records, analysis = _from_run(Path(args.from_run), args.t_start, out)
+    elif args.replot:
         scene = flume.scene(**kwargs)
         try:
             records = Records.load(out / "records.npz")
@@ -202,6 +215,27 @@ def run_flume(
     for path in written:
         print(path)
     return written
+
+
+def _from_run(run: Path, t_start: float | None, out: Path
+              ) -> tuple[ws.FlumeScene, Records, dict[str, Any]]:
+    """The scene, records and analysis of the ``watersim run`` folder ``run`` (its last
+    checkpoint), the analysis windows starting at ``t_start`` if given; writes analysis.json
+    and records.npz to ``out``."""
+    from watersim import rundir
+
+    try:
+        sim = rundir.reopen(run).sim
+    except (OSError, rundir.RunDirError) as exc:
+        raise SystemExit(f"--from-run: cannot reopen {run}: {exc}") from None
+    out.mkdir(parents=True, exist_ok=True)
+    analysis = sim.analyse(t_start=t_start)
+    (out / "analysis.json").write_text(json.dumps(analysis, indent=1), encoding="utf-8")
+    records = Records.from_gauges(sim.gauges)
+    records.save(out / "records.npz")
+    print(f"{run}: t = {sim.time:.2f} s, {sim.steps} steps, {sim.n_particles} particles",
+          file=sys.stderr)
+    return sim.setup, records, analysis
 
 
 # ------------------------------------------------------------------------------------------------

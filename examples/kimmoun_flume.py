@@ -7,6 +7,10 @@ runs, and rewrites gauges.csv as it goes, so a stopped run keeps its records.
     RAYON_NUM_THREADS=2 python3 examples/kimmoun_flume.py --out runs/kimmoun
     python3 examples/kimmoun_flume.py --dp 0.020142857 --periods 40 --out runs/kimmoun-fine
     python3 examples/kimmoun_flume.py --out runs/kimmoun --replot   # figures only
+    # the whole experiment (128 waves of spin-up, the last 128 analysed) from the built-in case:
+    watersim run kimmoun2d --set until=350 --out runs/kimmoun350 --checkpoint-every wall:10min
+    python3 examples/kimmoun_flume.py --from-run runs/kimmoun350 --t-start 186.8 \
+        --out runs/kimmoun350/figures
 
 The flume is the built-in case ``kimmoun2d`` written out with the public API, plus velocity
 probes at two sections of the breaking zone: 17 m long, d = 0.705 m, a plane 1:15 beach from

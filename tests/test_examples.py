@@ -6,6 +6,7 @@ end to end (a very short, very coarse run, then ``--replot``)."""
 from __future__ import annotations
 
 import importlib.util
+import json
 import math
 import sys
 import warnings
@@ -105,6 +106,28 @@ def test_kimmoun_script_runs_end_to_end_and_replots(tmp_path: Path) -> None:
         p.unlink()
     again = mod.main(["--dp", "0.141", "--periods", "1.0", "--out", str(out), "--replot"])
     assert all(p.is_file() for p in again) and len(again) == 5
+
+
+def test_kimmoun_script_draws_a_watersim_run_folder(tmp_path: Path) -> None:
+    """``--from-run``: the built-in kimmoun2d run by ``watersim run`` (a very coarse, one-period
+    run here) is reopened from its last checkpoint, analysed from ``--t-start`` and drawn."""
+    from watersim.cli import main as cli_main
+
+    run = tmp_path / "builtin"
+    assert cli_main(["run", "kimmoun2d", "--set", "dp=0.141", "--set", "until=1.3",
+                     "--out", str(run), "--no-progress", "--quiet"]) == 0
+    mod = _load("kimmoun_flume")
+    out = tmp_path / "figures"
+    written = mod.main(["--from-run", str(run), "--t-start", "0.5", "--out", str(out)])
+    assert len(written) == 5 and all(p.is_file() for p in written)
+    analysis = json.loads((out / "analysis.json").read_text())
+    assert all(g["window"][0] == 0.5 for g in analysis["gauges"])
+    with pytest.raises(SystemExit) as exc:
+        mod.main(["--from-run", str(tmp_path / "missing"), "--out", str(out)])
+    assert "--from-run" in str(exc.value)
+    with pytest.raises(SystemExit) as exc:
+        mod.main(["--t-start", "3", "--out", str(out)])
+    assert exc.value.code == 2
 
 
 def test_bad_options_are_refused(capsys: pytest.CaptureFixture[str]) -> None:

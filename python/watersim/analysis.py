@@ -1309,7 +1309,8 @@ def breaking_from_phase_averaged_heights(
     h = np.asarray(heights, dtype=np.float64).ravel()
     d = _finite("depths", depths).ravel()
     if not (x.shape == h.shape == d.shape):
-        raise ValueError(f"heights, depths: expected {x.size} values each, got {h.size} and {d.size}")
+        raise ValueError(f"heights, depths: expected {x.size} values each, got {h.size} and "
+                         f"{d.size}")
     r = _scalar_positive("ratio", ratio)
     use = [int(i) for i in np.argsort(x, kind="stable") if d[i] > 0.0 and math.isfinite(h[i])]
     if not use:
@@ -1363,8 +1364,8 @@ def crest_velocity(
     g: float = G,
 ) -> CrestVelocity:
     """Crest and trough velocities on a vertical: at each sample the highest and the lowest u
-    among the wet points (samples with none are left out), phase-averaged over whole periods (:func:`phase_average`), and the
-    highest per period.
+    among the wet points (samples with none are left out), phase-averaged over whole periods
+    (:func:`phase_average`), and the highest per period.
 
     Args:
         u: horizontal velocity [m/s], shape (n_samples, n_points).
