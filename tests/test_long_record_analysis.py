@@ -6,6 +6,7 @@ watersim.flume.analyse)."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -81,3 +82,35 @@ def test_mean_level_blocks_see_a_drift_and_not_the_waves() -> None:
         an.mean_level_blocks(waves, t, T, 0)
     with pytest.raises(ValueError, match="fewer than"):
         an.mean_level_blocks(waves, t, T, 100)
+
+
+def test_flume_analysis_reports_the_long_record_parts(tmp_path: Any) -> None:
+    """A tiny beach flume run long enough for steady windows: analysis.json carries the
+    phase-averaged breaking profile, the crest celerity, the velocity vertical's crest velocity
+    and undertow, and the mean level near the paddle, with units."""
+    import watersim as ws
+    from watersim.flume.analyse import UNITS
+
+    flume = ws.Flume(length=2.4, depth=0.24, beach=ws.PlaneBeach(toe=1.4, slope=0.3),
+                     damping=False)
+    vertical = ws.VelocityProbe(points=tuple((0.9, z) for z in (0.05, 0.1, 0.15, 0.2, 0.25)),
+                                name="u_v")
+    sim = flume.simulation(ws.RegularWave(height=0.03, period=0.6), dp=0.04, until=13.0,
+                           gauges=[ws.ElevationGauge(x) for x in (0.3, 0.6, 0.9, 1.2, 1.5)]
+                           + [vertical])
+    sim.run(sim.setup.until)
+    a = sim.analyse()
+    pa = a["breaking"]["phase_averaged"]
+    assert pa["n_waves"] >= 3 and len(pa["profile"]["x"]) >= 2
+    assert all(h > 0 for h in pa["profile"]["height"])
+    cel = a["crest_celerity"]
+    assert len(cel["ratio"]) >= 3 and all(0.3 < r < 1.5 for r in cel["ratio"] if r is not None)
+    (v,) = a["velocity_verticals"]
+    assert v["name"] == "u_v" and v["crest_velocity"] > 0 > v["trough_velocity"]
+    assert v["sqrt_gD"] == pytest.approx(math.sqrt(9.81 * 0.24), rel=1e-3)
+    assert "undertow" in v and len(v["mean_u"]) == 5
+    mwl = a["mean_level_near_paddle"]
+    assert mwl["gauge"] == "eta_x0.300" and len(mwl["block_means"]) == 8
+    assert abs(mwl["spread_over_H"]) < 0.2
+    for key in ("crest_velocity", "undertow", "spread", "ratio", "wave_height"):
+        assert key in UNITS

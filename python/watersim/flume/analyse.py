@@ -49,6 +49,9 @@ UNITS: dict[str, str] = {
     "trough_velocity_over_sqrt_gD": "1", "crest_velocity_per_wave_mean": "m/s",
     "crest_velocity_per_wave_std": "m/s", "block_starts": "s", "block_means": "m",
     "spread": "m", "drift": "m", "spread_over_H": "1", "drift_over_H": "1",
+    "trough_level": "m", "undertow": "m/s", "undertow_over_sqrt_gD": "1",
+    "flux_below_trough": "m^2/s", "flux_above_trough": "m^2/s", "mean_u": "m/s", "z": "m",
+    "celerity": "m/s", "shallow_water_speed": "m/s", "ratio": "1",
 }
 """The units of analysis.json's quantities, by key wherever it appears ("1": a pure number;
 elevations and levels are relative to the still-water level, times from the start of the run)."""
@@ -211,7 +214,12 @@ def analyse_flume(
       ``profile`` of phase-averaged heights, ``n_waves``): a height and a place of one wave.
     - ``velocity_verticals`` (regular waves, velocity probes on a vertical): ``crest_velocity``
       and ``trough_velocity`` (phase-averaged highest and lowest u in the water column), against
-      ``sqrt_gD``, and the per-wave crest velocity's mean and std.
+      ``sqrt_gD``, and the per-wave crest velocity's mean and std; the time-averaged ``mean_u``
+      at each point (``z`` above the SWL), the ``trough_level``, the ``undertow`` below it (also
+      over ``sqrt_gD``; seed 002 Table 3) and the mass fluxes below and above the trough.
+    - ``crest_celerity`` (regular waves with a beach): the phase-averaged crest's speed between
+      neighbouring gauges (``x`` midpoints), ``shallow_water_speed`` sqrt(g d) and their
+      ``ratio`` (seed 002: 0.7-0.8 in the surf zone).
     - ``mean_level_near_paddle`` (regular waves): the mean level at the gauge nearest the paddle
       in 8 blocks of whole periods, its ``spread`` and ``drift``, also over H.
     - ``runup`` (with a run-up gauge): per wave (regular: ``mean``, ``std``, ``values``,
@@ -252,6 +260,8 @@ def analyse_flume(
         verticals = _velocity_verticals(run)
         if verticals:
             result["velocity_verticals"] = verticals
+        if setup.flume.beach is not None:
+            result["crest_celerity"] = _crest_celerity(run)
         result["mean_level_near_paddle"] = _mean_level_near_paddle(run)
     return result
 
@@ -622,6 +632,26 @@ def _velocity_verticals(run: _Run) -> list[dict[str, Any]]:
                                        g=g), run.notes, name)
         if cv is None:
             continue
+        bed = float(np.asarray(run.setup.bed(x)).ravel()[0])
+        # the time mean needs uniform samples: the probe samples at the first step after each
+        # sample time, so its times are interpolated onto the nominal interval
+        ts = record.t[sel]
+        grid = np.arange(ts[0], ts[-1], float(np.median(np.diff(ts))))
+        u_grid = np.stack([np.interp(grid, ts, u[:, k]) for k in range(u.shape[1])], axis=1)
+        wet_grid = np.stack([np.interp(grid, ts, wet[:, k].astype(float)) >= 0.5
+                             for k in range(u.shape[1])], axis=1)
+        flow = _caught(functools.partial(an.vertical_mean_flow, u_grid, wet_grid, points[:, 1],
+                                         grid, T, bed=bed), run.notes, name)
+        if flow is not None:
+            entry.update(
+                trough_level=_f(flow.trough_level - run.depth),
+                undertow=_f(flow.undertow),
+                undertow_over_sqrt_gD=_f(flow.undertow / np.sqrt(g * depth)),
+                flux_below_trough=_f(flow.flux_below_trough),
+                flux_above_trough=_f(flow.flux_above_trough),
+                mean_u=[_f(v) for v in flow.mean_u],
+                z=[float(v) - run.depth for v in points[:, 1]],
+            )
         entry.update(
             window=[t0, float(record.t[-1])],
             n_waves=cv.n_waves,
@@ -634,6 +664,41 @@ def _velocity_verticals(run: _Run) -> list[dict[str, Any]]:
             crest_velocity_per_wave_std=float(np.std(cv.crest_per_wave)),
         )
     return out
+
+
+def _crest_celerity(run: _Run) -> dict[str, Any] | None:
+    """The phase-averaged crest's speed between neighbouring wet gauges (one per x) against
+    ``sqrt(g d)`` (:func:`watersim.analysis.crest_celerity`), over the whole periods after the
+    latest of their steady starts; None (with a note) when that window is too short."""
+    gauges, t, eta, T = run.gauges, run.t, run.eta, run.period
+    if T is None or not eta.size:
+        return None
+    cols: list[int] = []
+    for j in np.argsort(gauges.x, kind="stable"):
+        if gauges.still_depth[j] > 0.0 and (not cols or gauges.x[j] > gauges.x[cols[-1]] + 1e-9):
+            cols.append(int(j))
+    if len(cols) < 2:
+        return None
+    t0 = max(run.window_start(float(gauges.x[j])) for j in cols)
+    needed = run.too_short(t0)
+    sel = t >= t0
+    if needed is not None or np.count_nonzero(sel) < 4:
+        run.notes.append(run.short_note("celerity", t0, needed or t0,
+                                        "the ramp, the waves' arrival at the farthest gauge "
+                                        "and one period"))
+        return None
+    found = _caught(functools.partial(an.crest_celerity, eta[np.ix_(sel, cols)], t[sel],
+                                      gauges.x[cols], gauges.still_depth[cols], T,
+                                      g=run.setup.g), run.notes, "celerity")
+    if found is None:
+        return None
+    return {
+        "window": [t0, run.end],
+        "x": [float(v) for v in found.x],
+        "celerity": [_f(v) for v in found.celerity],
+        "shallow_water_speed": [_f(v) for v in found.shallow_water_speed],
+        "ratio": [_f(v) for v in found.ratio],
+    }
 
 
 def _mean_level_near_paddle(run: _Run) -> dict[str, Any] | None:
