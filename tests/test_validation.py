@@ -378,3 +378,18 @@ def test_dask_local_cluster_executor(tmp_path) -> None:
                          json_path=tmp_path / "runs.json")
     assert runs[0]["status"] == "ok" and runs[0]["steps"] > 0
     assert json.loads((tmp_path / "runs.json").read_text())[0]["case"] == "tank2d"
+
+
+def test_standing_wave_tank_keeps_the_tank_numerics() -> None:
+    """StandingWaveTank replaces Tank's per-dimension defaults (its geometry): it must carry
+    the same numerics preset, or the standing2d figures move with a default elsewhere."""
+    from watersim import _core
+    from watersim.scenes import Tank
+    from watersim.validation.cases import StandingWaveTank
+
+    def numerics(builder: Tank) -> dict[str, object]:
+        scene = json.loads(_core.resolve_scene(json.dumps(builder.to_scene())))
+        return {k: scene[k] for k in ("viscosity", "diffusion", "integrator", "coefh",
+                                      "coefsound", "cfl", "boundary")}
+
+    assert numerics(StandingWaveTank(dp=0.05)) == numerics(Tank(dim=2, dp=0.05))

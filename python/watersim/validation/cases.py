@@ -413,7 +413,8 @@ class StandingWaveTank(Tank):
     """
 
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
-        2: {"dp": 0.025, "until": 3.0, "length": 1.0, "depth": 0.5, "height": 0.8},
+        2: {"dp": 0.025, "until": 3.0, "length": 1.0, "depth": 0.5, "height": 0.8,
+            **nm.VERIFICATION},  # a Tank's numerics: this map replaces Tank's own
     }
     amplitude: float = 0.05
 
