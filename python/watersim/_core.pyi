@@ -84,9 +84,11 @@ class Simulation:
     ) -> dict[str, npt.NDArray[np.float64]]: ...
     def gauges(self) -> list[dict[str, Any]]:
         """Gauge records in the scene's order: dicts with ``name``, ``type``, ``t`` (n,) [s] and
-        ``z`` (n,) [m, NaN when dry] for elevation and run-up gauges, or ``velocity``
-        (n, points, dim) [m/s], ``kernel_sum`` (n, points) and ``points`` (points, dim) [m] for
-        velocity probes and windows (windows add ``shape``, the counts per axis, x fastest)."""
+        one array per quantity the core's gauge records (its ``columns``): (n,) for a gauge on a
+        line (elevation and run-up: ``z`` [m, NaN when dry]), (n, points) for a gauge at points,
+        with ``points`` (points, dim) [m] (velocity probes and windows: ``velocity``
+        (n, points, dim) [m/s] and ``kernel_sum`` (n, points)); a quantity of several components
+        gains a last axis. Windows add ``shape``, the counts per axis, x fastest."""
     @property
     def n_excluded(self) -> int:
         """Fluid particles excluded after leaving the domain."""

@@ -89,7 +89,19 @@ impl GaugeSpec {
         }
     }
 
-    /// The points a velocity probe or window samples.
+    /// The quantities the gauge records, in the order of a sample's values (each point's
+    /// columns in turn): elevation and run-up, z [m] (NaN when no water is found); velocity
+    /// probe and window, per point the velocity [m/s] then the kernel volume sum.
+    pub fn columns(&self, dim: usize) -> Vec<Column> {
+        match self {
+            GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => vec![Column { name: "z", size: 1 }],
+            GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
+                vec![Column { name: "velocity", size: dim }, Column { name: "kernel_sum", size: 1 }]
+            }
+        }
+    }
+
+    /// The points a point gauge samples (none for a gauge on a line).
     pub fn sample_points(&self, dim: usize) -> Vec<Vec<Real>> {
         match self {
             GaugeSpec::Velocity { points, .. } => points.clone(),
@@ -176,6 +188,14 @@ impl GaugeSpec {
     }
 }
 
+/// One quantity of a gauge's samples: its name in the record and its values per point (per
+/// sample for a gauge without points).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Column {
+    pub name: &'static str,
+    pub size: usize,
+}
+
 /// Samples recorded by one gauge.
 #[derive(Clone, Debug, Default)]
 pub struct GaugeRecord {
@@ -183,11 +203,13 @@ pub struct GaugeRecord {
     pub kind: &'static str,
     /// Sample times [s].
     pub t: Vec<Real>,
-    /// Values, `width` per sample: elevation and run-up: z [m] (NaN when no water is found);
-    /// velocity and window: per point the velocity components then the kernel volume sum.
+    /// Values, `width` per sample: for each point (once for a gauge without points) the
+    /// `columns` in turn.
     pub values: Vec<Real>,
     pub width: usize,
-    /// Sampled points of velocity probes and windows (flattened, `dim` per point).
+    /// What a sample holds, in order ([`GaugeSpec::columns`]).
+    pub columns: Vec<Column>,
+    /// Sampled points (flattened, `dim` per point); empty for a gauge on a line.
     pub points: Vec<Real>,
     /// Window grid shape (`n`), empty otherwise.
     pub shape: Vec<usize>,
@@ -198,16 +220,15 @@ impl GaugeRecord {
     /// An empty record of the gauge `g` in a scene of dimension `dim`.
     pub fn new(g: &GaugeSpec, dim: usize) -> Self {
         let points = g.sample_points(dim);
-        let width = match g {
-            GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => 1,
-            _ => points.len() * (dim + 1),
-        };
+        let columns = g.columns(dim);
+        let width = points.len().max(1) * columns.iter().map(|c| c.size).sum::<usize>();
         GaugeRecord {
             name: g.name().to_string(),
             kind: g.kind(),
             t: Vec::new(),
             values: Vec::new(),
             width,
+            columns,
             points: points.into_iter().flatten().collect(),
             shape: if let GaugeSpec::Window { n, .. } = g { n.clone() } else { Vec::new() },
             next_time: 0.0,
@@ -346,6 +367,15 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
             .pipe_nan()
     }
 
+    /// The Shepard sums ([`Self::shepard`]) at each of `points` (flattened, `dim` per point),
+    /// each point's turned into its values by `read`, in the points' order.
+    fn at_points<R>(&self, points: &[Real], read: R) -> Vec<Real>
+    where
+        R: Fn((Real, Real, Real, D::V)) -> Vec<Real> + Sync + Send,
+    {
+        points.par_chunks(D::DIM).flat_map_iter(|pt| read(self.shepard(D::V::from_slice(pt)))).collect()
+    }
+
     /// Samples every gauge of `specs` whose next sample time has come at time `t` into its
     /// record (`records` in the order of `specs`).
     pub fn sample_due(&self, specs: &[GaugeSpec], records: &mut [GaugeRecord], t: Real) {
@@ -389,14 +419,9 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                     rec.values.push(z);
                 }
                 GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
-                    let values: Vec<Real> = rec
-                        .points
-                        .par_chunks(D::DIM)
-                        .flat_map_iter(|pt| {
-                            let (w, _, _, v) = self.shepard(D::V::from_slice(pt));
-                            v.as_slice().iter().copied().chain(std::iter::once(w)).collect::<Vec<_>>()
-                        })
-                        .collect();
+                    let values = self.at_points(&rec.points, |(w, _, _, v)| {
+                        v.as_slice().iter().copied().chain(std::iter::once(w)).collect()
+                    });
                     rec.values.extend_from_slice(&values);
                 }
             }

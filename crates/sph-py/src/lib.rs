@@ -203,10 +203,12 @@ impl Simulation {
         Ok(d)
     }
 
-    /// Gauge records: a list of dicts with `name`, `type`, `t` (n,) and, by type,
-    /// `z` (n,) for elevation and run-up [m, NaN when dry], or `velocity` (n, points, dim),
-    /// `kernel_sum` (n, points) and `points` (points, dim) for velocity probes and windows
-    /// (windows also give `shape`, the grid counts per axis, x fastest).
+    /// Gauge records: a list of dicts with `name`, `type`, `t` (n,) and one array per column
+    /// the gauge declares (`GaugeSpec::columns`), (n,) for a gauge on a line (`z` of elevation
+    /// and run-up) or (n, points) with `points` (points, dim) for a gauge at points (`velocity`
+    /// and `kernel_sum` of velocity probes and windows); a column of several components gains
+    /// a last axis (`velocity` (n, points, dim)). Windows also give `shape`, the grid counts per
+    /// axis, x fastest.
     fn gauges<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let dim = self.inner.dim();
         let mut out = Vec::new();
@@ -216,21 +218,29 @@ impl Simulation {
             d.set_item("type", g.kind)?;
             let n = g.t.len();
             d.set_item("t", PyArray1::from_slice(py, &g.t))?;
-            if g.points.is_empty() {
-                d.set_item("z", PyArray1::from_slice(py, &g.values))?;
-            } else {
-                let m = g.points.len() / dim;
-                let (mut vel, mut ksum) = (Vec::with_capacity(n * m * dim), Vec::with_capacity(n * m));
-                for row in g.values.chunks_exact(dim + 1) {
-                    vel.extend_from_slice(&row[..dim]);
-                    ksum.push(row[dim]);
+            let m = g.points.len() / dim;
+            let stride: usize = g.columns.iter().map(|c| c.size).sum();
+            let mut offset = 0;
+            for col in &g.columns {
+                let mut values = Vec::with_capacity(n * m.max(1) * col.size);
+                for point in g.values.chunks_exact(stride) {
+                    values.extend_from_slice(&point[offset..offset + col.size]);
                 }
-                d.set_item("velocity", PyArray1::from_vec(py, vel).reshape([n, m, dim])?)?;
-                d.set_item("kernel_sum", PyArray1::from_vec(py, ksum).reshape([n, m])?)?;
+                let mut shape = vec![n];
+                if m > 0 {
+                    shape.push(m);
+                }
+                if col.size > 1 {
+                    shape.push(col.size);
+                }
+                d.set_item(col.name, PyArray1::from_vec(py, values).reshape(shape)?)?;
+                offset += col.size;
+            }
+            if m > 0 {
                 d.set_item("points", PyArray1::from_slice(py, &g.points).reshape([m, dim])?)?;
-                if !g.shape.is_empty() {
-                    d.set_item("shape", g.shape.clone())?;
-                }
+            }
+            if !g.shape.is_empty() {
+                d.set_item("shape", g.shape.clone())?;
             }
             out.push(d);
         }
