@@ -836,13 +836,20 @@ KIMMOUN_BREAKER_HEIGHT = 0.14
 """Wave height at breaking H_B [m], seed 001 section 2."""
 KIMMOUN_RUNUP_SPH = 0.0753
 """Seed 001's own SPH mean run-up "R/H = 7.53 %" (Fig. 9, Table 3), kept for comparison."""
+KIMMOUN_CREST_VELOCITY_X = 14.575 - 2.40
+"""Where seed 001 finds the highest velocities under the crest: 240 cm before the shoreline."""
+KIMMOUN_CREST_VELOCITY = 1.20
+"""Measured crest velocity over sqrt(g D) (seed 001 section 4, c_EXP = 1.20 sqrt(g D))."""
+KIMMOUN_CREST_VELOCITY_SPH = 1.05
+"""Seed 001's own SPH crest velocity over sqrt(g D), kept for comparison."""
 
 
 def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
     """kimmoun2d (seed 001 flume, H = 0.114 m, T = 1.275 s, 1:15 beach), until = ramp + arrival
     at x = 14.155 m + 4 periods (about 20.8 s; quick 2.2 periods).
-    Breaking position and H_B: where the mean wave height peaks among the gauges on the slope
-    (every 0.5 m from 8 to 14.5 m); run-up: mean per-wave maximum."""
+    Breaking position and H_B: where the phase-averaged wave first reaches H/d = 0.78 among the
+    gauges on the slope (every 0.5 m from 8 to 14.5 m) and its height there; crest velocity on
+    the vertical 240 cm before the shoreline; run-up: mean per-wave maximum."""
     dp = case.dp(res)
 
     def until(s: FlumeScene) -> float:
@@ -857,14 +864,19 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[st
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     br = result.get("breaking") or {}
     ru = result.get("runup") or {}
-    # the breaker: the largest mean wave height among the gauges on the slope (the analysis's
-    # max_height falls back to flat-floor gauges when none on the slope has a steady record)
+    # the breaker: where the phase-averaged wave first reaches H/d = 0.78 and its height there
+    # (one wave, the averaged one; analysis.json's breaking.phase_averaged)
+    pa = br.get("phase_averaged") or {}
+    x_b, h_b = pa.get("position"), pa.get("wave_height")
+    # the largest mean wave height among the gauges on the slope, the earlier definition
     depth = scene.flume.depth
     on_slope = [g for g in result["gauges"]
                 if 0.0 < g["still_depth"] < depth - 1e-9 and g.get("H_mean") is not None]
     top = max(on_slope, key=lambda g: g["H_mean"]) if on_slope else None
-    x_b = top["x"] if top is not None else None
-    h_b = top["H_mean"] if top is not None else None
+    # the crest velocity on the vertical 240 cm before the shoreline, against sqrt(g D)
+    vertical = next((v for v in result.get("velocity_verticals", [])
+                     if abs(v["x"] - KIMMOUN_CREST_VELOCITY_X) < 1e-3), {})
+    u_crest = vertical.get("crest_velocity_over_sqrt_gD")
     # the seed's comparison values (section 2, Table 3): xi = 0.31, H = 0.11 m, L0 = 2.54 m
     xi = 0.31
     formulas = {"hunt": float(wt.hunt_runup(xi)), "schuttrumpf": float(wt.schuttrumpf_runup(xi)),
@@ -872,12 +884,22 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[st
     r_over_h = ru.get("mean_over_H")
     details = {"breaking_x": x_b, "breaking_x_reference": KIMMOUN_BREAKING_X,
                "breaker_height": h_b, "breaker_height_reference": KIMMOUN_BREAKER_HEIGHT,
-               "breaking_onset_mccowan_x": br.get("position"), "runup_over_H": r_over_h,
+               "breaking_n_waves": pa.get("n_waves"),
+               "max_mean_height_x": top["x"] if top is not None else None,
+               "max_mean_height": top["H_mean"] if top is not None else None,
+               "breaking_onset_mccowan_x": br.get("position"),
+               "crest_velocity_over_sqrt_gD": u_crest,
+               "crest_velocity_over_sqrt_gD_experiment": KIMMOUN_CREST_VELOCITY,
+               "crest_velocity_over_sqrt_gD_seed_sph": KIMMOUN_CREST_VELOCITY_SPH,
+               "trough_velocity_over_sqrt_gD": vertical.get("trough_velocity_over_sqrt_gD"),
+               "runup_over_H": r_over_h,
                "runup_over_H_formulas": formulas, "runup_over_H_seed_sph": KIMMOUN_RUNUP_SPH,
                "notes": notes, "analysis_notes": result.get("notes", [])}
     errors = {
         "breaking_x_m": abs(x_b - KIMMOUN_BREAKING_X) if x_b is not None else None,
         "breaker_height": m.relative_error(h_b, KIMMOUN_BREAKER_HEIGHT) if h_b else None,
+        "crest_velocity": (m.relative_error(u_crest, KIMMOUN_CREST_VELOCITY)
+                           if u_crest is not None else None),
         "runup_vs_schuttrumpf": (m.relative_error(r_over_h, formulas["schuttrumpf"])
                                  if r_over_h is not None else None),
     }
@@ -1004,14 +1026,20 @@ CASES: dict[str, Case] = {
              "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
              "wave height / dp", 0.114, (1.2, 1.7, 2.3), (1.2,), "breaker_height", 0.10,
              "breaker height within 10 % of H_B = 0.14 m", _run_kimmoun,
-             "`breaking_x_m`: distance [m] between the gauge (0.5 m spacing) with the largest "
-             "mean wave height on the slope and the seed's incipient breaking, 248 cm before "
-             "the shoreline (x = 12.095 m). `breaker_height`: that height against H_B = 0.14 m. "
-             "`runup_vs_schuttrumpf`: mean run-up R/H against Schuttrumpf's R/H = 2.25 "
-             "tanh(xi/2) with the seed's xi = 0.31 (the seed finds its SPH closest to that "
-             "formula; the other formulas and the seed's own SPH value are in runs.json).",
-             report_details=("breaking_x", "breaker_height", "breaking_onset_mccowan_x",
-                             "runup_over_H"), depth=0.705),
+             "`breaking_x_m`: distance [m] between the breaking point of the phase-averaged "
+             "wave (where its H/d first reaches 0.78, interpolated between the gauges 0.5 m "
+             "apart; analysis.json `breaking.phase_averaged`) and the seed's incipient "
+             "breaking, 248 cm before the shoreline (x = 12.095 m). `breaker_height`: the "
+             "phase-averaged wave's height at that point against H_B = 0.14 m (runs before "
+             "2026-12-05 took the largest mean height among the gauges instead, now "
+             "`details.max_mean_height`). `crest_velocity`: the phase-averaged crest velocity "
+             "over sqrt(g D) on the vertical 240 cm before the shoreline against the measured "
+             "1.20 (the seed's SPH: 1.05). `runup_vs_schuttrumpf`: mean run-up R/H against "
+             "Schuttrumpf's R/H = 2.25 tanh(xi/2) with the seed's xi = 0.31 (the seed finds its "
+             "SPH closest to that formula; the other formulas and the seed's own SPH value are "
+             "in runs.json).",
+             report_details=("breaking_x", "breaker_height", "max_mean_height",
+                             "crest_velocity_over_sqrt_gD", "runup_over_H"), depth=0.705),
     )
 }
 """The validation cases by name, in report order."""
