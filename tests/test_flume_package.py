@@ -82,9 +82,8 @@ def test_the_core_gauge_types_are_the_gauge_classes_tags() -> None:
         gauges=[ws.ElevationGauge(1.0), ws.VelocityProbe(points=((1.0, 0.1),)),
                 ws.VelocityWindow(min=(1.0, 0.05), max=(1.5, 0.2), n=(2, 2))])
     specs = scene.to_scene()["gauges"]
-    assert [s["type"] for s in specs] == list(flume.GAUGE_TYPES)
-    for spec in specs:
-        assert spec["type"] == flume.GAUGE_TYPES[spec["type"]].TAG
+    gauges = [*scene.gauges, scene.runup_gauge]
+    assert [flume.GAUGE_TYPES[s["type"]] for s in specs] == [type(g) for g in gauges]
 
 
 @dataclasses.dataclass(frozen=True)

@@ -48,6 +48,20 @@ near the gauge line (seed 001's method)."""
 RUNUP_OFFSET_DP = 1.5
 """Distance of the automatic run-up gauge line above the beach surface, in dp (normal to it)."""
 
+DRY_KERNEL_SUM = 0.5
+"""A gauge point whose kernel volume sum is below this is out of the water (dry)."""
+
+
+def point_labels(points: npt.NDArray[np.float64]) -> list[str]:
+    """A CSV label for each of the points (p, dim) [m]: its position ``x4p000_z0p100`` (x, (y,)
+    z to the millimetre), ``_k`` added to the k-th point at the place of an earlier one."""
+    axes = ("x", "z") if points.shape[1] == 2 else ("x", "y", "z")
+    labels: list[str] = []
+    for k, point in enumerate(points):
+        label = csv_column("_".join(f"{a}{c:.3f}" for a, c in zip(axes, point, strict=True)))
+        labels.append(f"{label}_{k}" if label in labels else label)
+    return labels
+
 
 @dataclass(frozen=True)
 class VelocityRecord:
@@ -259,21 +273,12 @@ class ElevationGauge(_Gauge):
 
 
 @dataclass(frozen=True)
-class VelocityProbe(_Gauge):
-    """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
-
-    Attributes:
-        points: the points, in flume coordinates (z from the floor).
-        name: record name; default ``velocity{i}``.
-        interval: sampling interval [s]; default the scene's ``sample_interval``.
-    """
+class _GaugeAtPoints(_Gauge):
+    """A gauge at fixed points (x, z) or (x, y, z) [m]: their schema and checks."""
 
     points: tuple[tuple[float, ...], ...]
     name: str | None = None
     interval: float | None = None
-
-    TAG: ClassVar[str] = "velocity"
-    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     def __post_init__(self) -> None:
         try:
@@ -299,6 +304,20 @@ class VelocityProbe(_Gauge):
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         return {"type": self.TAG, "name": name, "points": [list(p) for p in self.points],
                 "interval": interval}
+
+
+@dataclass(frozen=True)
+class VelocityProbe(_GaugeAtPoints):
+    """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
+
+    Attributes:
+        points: the points, in flume coordinates (z from the floor).
+        name: record name; default ``velocity{i}``.
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    TAG: ClassVar[str] = "velocity"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:

@@ -11,15 +11,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from .gauges import GAUGE_TYPES, Series, VelocityRecord, csv_column
+from .gauges import DRY_KERNEL_SUM, GAUGE_TYPES, Series, VelocityRecord, csv_column, point_labels
 
 if TYPE_CHECKING:
     from .scene import FlumeScene
 
 __all__ = ["DRY_KERNEL_SUM", "FlumeGauges", "VelocityRecord", "velocity_csv_name"]
-
-DRY_KERNEL_SUM = 0.5
-"""A velocity point whose kernel volume sum is below this is out of the water (dry)."""
 
 _COMPONENTS = {2: ("u", "w"), 3: ("u", "v", "w")}
 """Velocity components along x (u), y (v) and z (w), the axes of the flume."""
@@ -162,14 +159,8 @@ class FlumeGauges:
         n = record.t.size
         velocity = np.asarray(record.velocity, dtype=np.float64).reshape(n, len(points), -1)
         ksum = np.asarray(record.kernel_sum, dtype=np.float64).reshape(n, len(points))
-        axes = ("x", "z") if points.shape[1] == 2 else ("x", "y", "z")
         header, cols = ["t_s"], [record.t]
-        labels: set[str] = set()
-        for k, point in enumerate(points):
-            label = csv_column("_".join(f"{a}{c:.3f}" for a, c in zip(axes, point, strict=True)))
-            if label in labels:  # two points at one place (to the millimetre)
-                label += f"_{k}"
-            labels.add(label)
+        for k, label in enumerate(point_labels(points)):
             dry = ksum[:, k] < DRY_KERNEL_SUM
             for c, component in enumerate(_COMPONENTS[velocity.shape[2]]):
                 header.append(f"{component}_{label}_m_per_s")
