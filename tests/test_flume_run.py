@@ -224,7 +224,7 @@ def test_unstable_flume_run_keeps_gauges_and_exits_1(tmp_path: Path) -> None:
 
 
 def test_flume_scene_command_prints_the_scene() -> None:
-    proc = run_cli("scene", "bar2d", "--set", "dp=0.05")
+    proc = run_cli("show-scene", "--json", "bar2d", "--set", "dp=0.05")
     assert proc.returncode == 0, proc.stderr
     shown = json.loads(proc.stdout)
     assert shown["scene"]["obstacles"][0]["shape"] == "profile"

@@ -190,13 +190,27 @@ def test_show_scene_round_trip_gives_the_same_core_scene(
     path.write_text(text)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # stansby2d's wave is beyond Stokes 2nd order: warned
-        assert cli.main(["scene", case]) == 0
+        assert cli.main(["show-scene", "--json", case]) == 0
         direct = json.loads(capsys.readouterr().out)
-        assert cli.main(["scene", str(path)]) == 0
+        assert cli.main(["show-scene", "--json", str(path)]) == 0
         from_file = json.loads(capsys.readouterr().out)
         # and the builder objects are equal field by field
         assert sf.load(path).builder == cli.builder_from_args(case, [])
     assert from_file == direct
+
+
+def test_scene_is_a_deprecated_alias_of_show_scene_json(
+    capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert cli.main(["show-scene", "--json", "dambreak2d", "--set", "dp=0.04"]) == 0
+    shown = capsys.readouterr()
+    assert "deprecated" not in shown.err
+    assert cli.main(["scene", "dambreak2d", "--set", "dp=0.04"]) == 0
+    alias = capsys.readouterr()
+    assert alias.out == shown.out and json.loads(alias.out)["scene"]["dp"] == 0.04
+    assert "`watersim scene` is deprecated" in alias.err and "show-scene --json" in alias.err
+    assert cli.main(["show-scene", "--reference", "--json"]) == 2
+    assert "--reference: takes no CASE, --set or --json" in capsys.readouterr().err
 
 
 def test_show_scene_applies_set_and_refuses_bad_input(capsys: pytest.CaptureFixture[str]) -> None:

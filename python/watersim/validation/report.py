@@ -218,6 +218,22 @@ def _plot_case(name: str, runs: Sequence[Record], metrics: list[str], primary: s
     plt.close(fig)
 
 
+INTRODUCTION: tuple[str, ...] = (
+    "",
+    "Each case runs at several resolutions (particles per characteristic length, so",
+    "dp = length / resolution; for the wave flumes snapped to",
+    "depth / round(depth / dp) so the water is whole particle layers deep: each run's `dp`",
+    "is the one it used). Errors are fractions (0.05 = 5 %) unless the name ends in",
+    "`_m` (metres) or `_phase` (radians). The convergence order is the least-squares slope of",
+    "log(error) against log(dp) over the finished runs: positive means the error falls as dp",
+    "falls. The Pareto front holds the runs that no other run beats on both wall time and",
+    "the case's primary error. Wall times are on a shared machine (see above); `cpu_s` is",
+    "the process CPU time of the run.",
+    "",
+)
+"""What the report's figures mean, under its header."""
+
+
 def write_report(
     records: Sequence[Record],
     out_dir: str | Path,
@@ -248,117 +264,134 @@ def write_report(
         if r["case"] not in names:
             names.append(r["case"])
     names.sort(key=lambda n: list(cases).index(n) if n in cases else len(cases))
-    lines = ["# Validation report: error against run time", ""]
-    lines += list(header)
-    lines += [
-        "",
-        "Each case runs at several resolutions (particles per characteristic length, so",
-        "dp = length / resolution; for the wave flumes snapped to",
-        "depth / round(depth / dp) so the water is whole particle layers deep: each run's `dp`",
-        "is the one it used). Errors are fractions (0.05 = 5 %) unless the name ends in",
-        "`_m` (metres) or `_phase` (radians). The convergence order is the least-squares slope of",
-        "log(error) against log(dp) over the finished runs: positive means the error falls as dp",
-        "falls. The Pareto front holds the runs that no other run beats on both wall time and",
-        "the case's primary error. Wall times are on a shared machine (see above); `cpu_s` is",
-        "the process CPU time of the run.",
-        "",
-        "## Summary",
-        "",
-    ]
+    lines = ["# Validation report: error against run time", "", *header, *INTRODUCTION,
+             "## Summary", ""]
     summary: list[str] = []
     body: list[str] = []
     for name in names:
-        runs = [r for r in records if r["case"] == name]
-        runs.sort(key=lambda r: float(r["resolution"]))
-        case = cases.get(name)
-        primary = getattr(case, "primary", None)
-        metrics = _metrics_of(runs)
-        if primary is not None and primary in metrics:
-            metrics.remove(primary)
-            metrics.insert(0, primary)
-        png = f"{name}.png"
-        _plot_case(name, runs, metrics, primary, out / png)
-        body += [f"## {name}", ""]
-        if case is not None:
-            body += [f"{case.description}. Reference: {case.reference}. "
-                     f"Resolution = {case.resolution_meaning}.", ""]
-        body += ["| resolution | dp [m] | particles | steps | sim time [s] | wall [s] | cpu [s] "
-                 "| status | " + " | ".join(metrics) + " |",
-                 "|" + "---|" * (8 + len(metrics))]
-        for r in runs:
-            errs = [_fmt(_error(r, k)) for k in metrics]
-            status = r["status"] if r["status"] == "ok" else f"**{r['status']}**"
-            body.append(f"| {_fmt(r['resolution'])} | {_fmt(r['dp'], 4)} | {r['n_particles']} | "
-                        f"{r['steps']} | {_fmt(r['sim_time'])} | {_fmt(r['wall_s'])} | "
-                        f"{_fmt(r.get('cpu_s'))} | {status} | " + " | ".join(errs) + " |")
-        shown = [k for k in getattr(case, "report_details", ()) if any(
-            k in (r.get("details") or {}) for r in runs)]
-        if shown:
-            body += ["", "Measured values (`details` in runs.json):", "",
-                     "| resolution | " + " | ".join(shown) + " |", "|" + "---|" * (1 + len(shown))]
-            for r in runs:
-                d = r.get("details") or {}
-                body.append(f"| {_fmt(r['resolution'])} | "
-                            + " | ".join(_fmt(d.get(k), 4) for k in shown) + " |")
-        failed = [r for r in runs if r["status"] != "ok"]
-        for r in failed:
-            body.append(f"\n- resolution {_fmt(r['resolution'])}: {r['status']}: "
-                        f"{r.get('message')}")
-        body += ["", "Observed convergence order (error ~ dp^p):", ""]
-        for k in metrics:
-            good = ok_runs(runs, k)
-            order = convergence_order([float(r["dp"]) for r in good],
-                                      [_error(r, k) for r in good])  # type: ignore[misc]
-            if math.isnan(order.order):
-                body.append(f"- `{k}`: not enough finished runs")
-                continue
-            if abs(order.order) < FLAT_ORDER and order.falls_every_step:
-                # a slow but steady fall is not noise about a level: say both
-                trend = (f"falls at every refinement, slowly (|p| < {FLAT_ORDER}, close to a "
-                         "level error)")
-            elif abs(order.order) < FLAT_ORDER:
-                trend = f"stays about level (|p| < {FLAT_ORDER})"
-            else:
-                trend = ("falls" if order.falls else "does NOT fall") + \
-                    " from the coarsest to the finest run"
-            body.append(f"- `{k}`: p = {order.order:.2f} over {order.n_runs} runs; the error "
-                        f"{trend}")
-        for what, t_key, x_key in SERIES:
-            selfconv = self_convergence(runs, t_key, x_key)
-            if not selfconv:
-                continue
-            finest = min((r for r in runs if r.get("status") == "ok"),
-                         key=lambda r: float(r["dp"]))
-            parts = ", ".join(f"resolution {_fmt(r['resolution'])}: {_fmt(d)}"
-                              for r, d in selfconv)
-            text = (f"Self-convergence (a labelled extra, no reference data): RMS relative "
-                    f"difference of the {what} to the finest run's (resolution "
-                    f"{_fmt(finest['resolution'])}): {parts}")
-            if len(selfconv) >= 2:
-                order = convergence_order([float(r["dp"]) for r, _ in selfconv],
-                                          [d for _, d in selfconv])
-                text += f"; observed order {order.order:.2f}"
-            body += ["", text + "."]
-        answer = "-"
-        if case is not None and primary is not None:
-            best = cheapest_meeting(runs, primary, case.target)
-            if best is None:
-                answer = (f"none of the runs meets it ({case.target_text}, metric "
-                          f"`{primary}`)")
-            else:
-                answer = (f"the cheapest run that meets {case.target_text} is resolution "
-                          f"{_fmt(best['resolution'])} (dp = {_fmt(best['dp'], 4)} m, "
-                          f"{_fmt(best['wall_s'])} s wall)")
-            front = pareto_front(runs, primary)
-            body += ["", f"Pareto front (`{primary}` against wall time): " + (", ".join(
-                f"resolution {_fmt(r['resolution'])} ({_fmt(r['wall_s'])} s, "
-                f"{_fmt(_error(r, primary))})" for r in front) or "empty") + "."]
-        note = getattr(case, "report_note", "") if case is not None else ""
-        if note:
-            body += ["", note]
-        body += ["", f"**Answer:** {answer}.", "", f"![{name}]({png})", ""]
+        runs = sorted((r for r in records if r["case"] == name),
+                      key=lambda r: float(r["resolution"]))
+        answer, section = _case_section(name, runs, cases.get(name), out)
         summary.append(f"- **{name}**: {answer}.")
+        body += section
     lines += summary + [""] + body
     readme = out / "README.md"
     readme.write_text("\n".join(lines) + "\n", "utf-8")
     return readme
+
+
+def _case_section(name: str, runs: list[Record], case: Any, out: Path) -> tuple[str, list[str]]:
+    """One case's section of the report (its figure drawn to ``out/<name>.png``): the runs,
+    their measured values and failures, the convergence orders, the self-convergence, the
+    Pareto front; and the answer the summary repeats: the cheapest run meeting the target."""
+    primary = getattr(case, "primary", None)
+    metrics = _metrics_of(runs)
+    if primary is not None and primary in metrics:
+        metrics.remove(primary)
+        metrics.insert(0, primary)
+    png = f"{name}.png"
+    _plot_case(name, runs, metrics, primary, out / png)
+    body = [f"## {name}", ""]
+    if case is not None:
+        body += [f"{case.description}. Reference: {case.reference}. "
+                 f"Resolution = {case.resolution_meaning}.", ""]
+    body += _runs_table(runs, metrics)
+    body += _details_table(runs, getattr(case, "report_details", ()))
+    for r in runs:
+        if r["status"] != "ok":
+            body.append(f"\n- resolution {_fmt(r['resolution'])}: {r['status']}: "
+                        f"{r.get('message')}")
+    body += ["", "Observed convergence order (error ~ dp^p):", ""]
+    body += [_order_line(runs, k) for k in metrics]
+    body += _self_convergence_lines(runs)
+    answer = "-"
+    if case is not None and primary is not None:
+        answer = _target_answer(runs, primary, case)
+        front = pareto_front(runs, primary)
+        body += ["", f"Pareto front (`{primary}` against wall time): " + (", ".join(
+            f"resolution {_fmt(r['resolution'])} ({_fmt(r['wall_s'])} s, "
+            f"{_fmt(_error(r, primary))})" for r in front) or "empty") + "."]
+    note = getattr(case, "report_note", "") if case is not None else ""
+    if note:
+        body += ["", note]
+    body += ["", f"**Answer:** {answer}.", "", f"![{name}]({png})", ""]
+    return answer, body
+
+
+def _runs_table(runs: Sequence[Record], metrics: list[str]) -> list[str]:
+    """One row per run: its size, cost, status and errors."""
+    lines = ["| resolution | dp [m] | particles | steps | sim time [s] | wall [s] | cpu [s] "
+             "| status | " + " | ".join(metrics) + " |",
+             "|" + "---|" * (8 + len(metrics))]
+    for r in runs:
+        errs = [_fmt(_error(r, k)) for k in metrics]
+        status = r["status"] if r["status"] == "ok" else f"**{r['status']}**"
+        lines.append(f"| {_fmt(r['resolution'])} | {_fmt(r['dp'], 4)} | {r['n_particles']} | "
+                     f"{r['steps']} | {_fmt(r['sim_time'])} | {_fmt(r['wall_s'])} | "
+                     f"{_fmt(r.get('cpu_s'))} | {status} | " + " | ".join(errs) + " |")
+    return lines
+
+
+def _details_table(runs: Sequence[Record], report_details: Sequence[str]) -> list[str]:
+    """The measured values the case shows (``details`` of its records), one row per run."""
+    shown = [k for k in report_details if any(k in (r.get("details") or {}) for r in runs)]
+    if not shown:
+        return []
+    lines = ["", "Measured values (`details` in runs.json):", "",
+             "| resolution | " + " | ".join(shown) + " |", "|" + "---|" * (1 + len(shown))]
+    for r in runs:
+        d = r.get("details") or {}
+        lines.append(f"| {_fmt(r['resolution'])} | "
+                     + " | ".join(_fmt(d.get(k), 4) for k in shown) + " |")
+    return lines
+
+
+def _order_line(runs: Sequence[Record], metric: str) -> str:
+    """The observed convergence order of one error, and what it says."""
+    good = ok_runs(runs, metric)
+    order = convergence_order([float(r["dp"]) for r in good],
+                              [_error(r, metric) for r in good])  # type: ignore[misc]
+    if math.isnan(order.order):
+        return f"- `{metric}`: not enough finished runs"
+    if abs(order.order) < FLAT_ORDER and order.falls_every_step:
+        # a slow but steady fall is not noise about a level: say both
+        trend = (f"falls at every refinement, slowly (|p| < {FLAT_ORDER}, close to a "
+                 "level error)")
+    elif abs(order.order) < FLAT_ORDER:
+        trend = f"stays about level (|p| < {FLAT_ORDER})"
+    else:
+        trend = ("falls" if order.falls else "does NOT fall") + \
+            " from the coarsest to the finest run"
+    return f"- `{metric}`: p = {order.order:.2f} over {order.n_runs} runs; the error {trend}"
+
+
+def _self_convergence_lines(runs: Sequence[Record]) -> list[str]:
+    """Each time series' difference to the finest run's (:data:`SERIES`), with its order."""
+    lines: list[str] = []
+    for what, t_key, x_key in SERIES:
+        selfconv = self_convergence(runs, t_key, x_key)
+        if not selfconv:
+            continue
+        finest = min((r for r in runs if r.get("status") == "ok"),
+                     key=lambda r: float(r["dp"]))
+        parts = ", ".join(f"resolution {_fmt(r['resolution'])}: {_fmt(d)}"
+                          for r, d in selfconv)
+        text = (f"Self-convergence (a labelled extra, no reference data): RMS relative "
+                f"difference of the {what} to the finest run's (resolution "
+                f"{_fmt(finest['resolution'])}): {parts}")
+        if len(selfconv) >= 2:
+            order = convergence_order([float(r["dp"]) for r, _ in selfconv],
+                                      [d for _, d in selfconv])
+            text += f"; observed order {order.order:.2f}"
+        lines += ["", text + "."]
+    return lines
+
+
+def _target_answer(runs: Sequence[Record], primary: str, case: Any) -> str:
+    """The cheapest run whose ``primary`` error meets the case's target, or that none does."""
+    best = cheapest_meeting(runs, primary, case.target)
+    if best is None:
+        return f"none of the runs meets it ({case.target_text}, metric `{primary}`)"
+    return (f"the cheapest run that meets {case.target_text} is resolution "
+            f"{_fmt(best['resolution'])} (dp = {_fmt(best['dp'], 4)} m, "
+            f"{_fmt(best['wall_s'])} s wall)")
