@@ -185,3 +185,12 @@ def test_bad_checkpoint_intervals_are_refused(scene_file: Path,
     assert "only flume runs" in capsys.readouterr().err
     assert rundir.CheckpointEvery.parse("wall:10min") == rundir.CheckpointEvery(600.0, wall=True)
     assert rundir.CheckpointEvery.parse("sim:2.5") == rundir.CheckpointEvery(2.5)
+
+
+def test_long_runs_write_their_records_as_they_go() -> None:
+    """A short run rewrites its records every twentieth of the run; a long one at least every
+    50 gauge samples (the 350 s kimmoun2d run: every 1.6 s, not every 17.5 s)."""
+    from watersim.cli import record_every
+
+    assert record_every(10.0, 0.03) == pytest.approx(0.5)
+    assert record_every(350.0, 0.031875) == pytest.approx(50 * 0.031875)

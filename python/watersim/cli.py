@@ -89,6 +89,17 @@ __all__ = ["ALL_CASES", "CASES", "build_parser", "builder_from_args", "main", "s
 DEFAULT_CHECKPOINTS = "wall:600"
 """A flume run writes a checkpoint every ten minutes of wall time unless told otherwise."""
 
+RECORD_EVERY_SAMPLES = 50
+"""See :func:`record_every`."""
+
+
+def record_every(until: float, sample_interval: float) -> float:
+    """How often [s of simulated time] a flume run rewrites gauges.csv and velocity_NAME.csv,
+    logs a sample and polls a wall-clock checkpoint, unless ``--sample-every`` says otherwise:
+    every twentieth of the run, but at least every :data:`RECORD_EVERY_SAMPLES` gauge samples,
+    so that a long run keeps its records (and its ten-minute checkpoints) as it goes."""
+    return max(min(until / 20.0, RECORD_EVERY_SAMPLES * sample_interval), 1e-6)
+
 
 # ------------------------------------------------------------------------------------------------
 # helpers
@@ -413,7 +424,9 @@ def _start_flume(
     keeper = _last_good_keeper(args)
     checkpoint_every = rundir.CheckpointEvery.parse(args.checkpoint_every or DEFAULT_CHECKPOINTS)
     until = float(builder.until)  # type: ignore[arg-type]
-    every = args.sample_every if args.sample_every is not None else max(until / 20.0, 1e-6)
+    every = args.sample_every
+    if every is None:
+        every = record_every(until, float(builder.sample_interval))  # type: ignore[arg-type]
     # the core's checks (memory, ...) come before the output folder
     sim = builder.build() if resumed is None else resumed.sim
     if resumed is None:

@@ -105,7 +105,8 @@ class OutputOptions:
             none when left out. ``--snapshot-every`` overrides it.
         sample_every: dam breaks: surge front sampling interval for front.csv [s] (default
             0.01); flumes: how often gauges.csv is rewritten during the run [s] (default
-            ``until / 20``; the gauges themselves sample at the scene's ``sample_interval``).
+            ``until / 20`` or 50 sample intervals, the shorter; the gauges themselves sample at
+            the scene's ``sample_interval``).
             ``--sample-every`` overrides it.
     """
 
