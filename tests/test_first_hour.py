@@ -389,6 +389,32 @@ def test_did_you_mean_on_a_mistyped_case_or_key(tmp_path: Path) -> None:
     assert "did you mean" not in proc.stderr  # nothing close: no guess
 
 
+def test_paddle_type_switches_the_law_of_a_built_in_flume_case() -> None:
+    piston = cli.builder_from_args("flume2d", [])
+    flap = cli.builder_from_args("flume2d", ["paddle.type=flap", "paddle.hinge_z=0.1"])
+    assert isinstance(piston.paddle, ws.Piston) and isinstance(flap.paddle, ws.Flap)
+    # the settings the two laws share carry over; the scene's paddle is the flap's
+    assert (flap.paddle.order, flap.paddle.ramp_periods) == (2, 2.0) and flap.paddle.hinge == 0.1
+    paddle = flap.to_scene()["paddle"]
+    assert paddle["kind"] == "flap" and paddle["hinge_z"] == 0.1
+    # a built-in case written as a scene file keeps the switch
+    assert sf.loads(sf.dumps(flap)).builder == flap
+    assert "paddle.type" in cli.settable_keys("kimmoun2d")
+
+
+@pytest.mark.parametrize(("setting", "needles"), [
+    ("paddle.type=wedge", ("paddle.type", '"piston", "flap"', "'wedge'")),
+    ("paddle.hinge_z=0.1", ("paddle.hinge_z", "paddle.type=flap")),
+    ("wave.type=irregular", ("wave.type", "fixed type", "watersim show-scene flume2d")),
+])
+def test_paddle_type_refusals_name_the_key_and_the_choices(
+    setting: str, needles: tuple[str, ...], capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert cli.main(["show-scene", "flume2d", "--set", setting]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and all(n in err for n in needles), err
+
+
 def test_a_beach_steeper_than_one_to_one_is_warned_about() -> None:
     with pytest.warns(ws.flume.SteepSlopeWarning, match=r"79 degrees.*slope = 0\.2"):
         ws.PlaneBeach(toe=1.0, slope=5)

@@ -52,6 +52,7 @@ from .flume import (
     elevation_gauges_between,
     lattice_dp,
 )
+from .flume.paddles import PADDLE_TYPES, Paddle
 from .overrides import OverrideError, Overrides
 from .scenes import SceneBuilder
 
@@ -103,6 +104,12 @@ class _Settings(Overrides):
         if hint is float and self.was_set(key):
             _positive(key, value)
         return value
+
+    def paddle(self, default: Paddle) -> Paddle:
+        """The case's wave-maker: ``default`` with the ``paddle.*`` values applied;
+        ``paddle.type`` switches its law (``piston``, ``flap``), keeping the settings the two
+        share (order, ramp, absorption, stroke limit)."""
+        return self.apply_tagged("paddle", default, PADDLE_TYPES)
 
     def numerics(self, **defaults: Any) -> dict[str, Any]:
         """The numerical parameters (:class:`~watersim.SceneBuilder` fields and
@@ -165,7 +172,7 @@ def case_flume2d(s: _Settings) -> FlumeScene:
     measured decay.
     """
     wave = s.apply("wave", RegularWave(height=0.05, period=1.2))
-    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    paddle = s.paddle(Piston(order=2, ramp_periods=2.0))
     depth = s.value("flume.depth", 0.3)
     wl = float(wt.wavelength(wave.period, depth))
     length = s.value("flume.length", round(4.75 * wl, 2))
@@ -205,7 +212,7 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     "kimmoun2d: shoaling and breaking").
     """
     wave = s.apply("wave", RegularWave(height=0.114, period=1.275))
-    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    paddle = s.paddle(Piston(order=2, ramp_periods=2.0))
     beach = s.apply("beach", PlaneBeach(toe=4.0, slope=1.0 / 15.0))
     depth = s.value("flume.depth", 0.705)
     length = s.value("flume.length", 17.0)
@@ -265,7 +272,7 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     1,800 fluid), until = 10 periods (24.2 s).
     """
     wave = s.apply("wave", RegularWave(height=0.105, period=2.42))
-    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    paddle = s.paddle(Piston(order=2, ramp_periods=2.0))
     beach = s.apply("beach", PlaneBeach(toe=2.0, slope=1.0 / 20.0))
     depth = s.value("flume.depth", 0.34)
     length = s.value("flume.length", 11.0)
@@ -296,7 +303,7 @@ def case_bar2d(s: _Settings) -> FlumeScene:
     until = ramp + arrival at 21 m + 3 periods (about 25 s).
     """
     wave = s.apply("wave", RegularWave(height=0.02, period=2.02))
-    paddle = s.apply("paddle", Piston(order=2, ramp_periods=2.0))
+    paddle = s.paddle(Piston(order=2, ramp_periods=2.0))
     depth = s.value("flume.depth", 0.4)
     wl = float(wt.wavelength(wave.period, depth))
     length = s.value("flume.length", round(21.5 + wl, 2))
@@ -318,7 +325,7 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
     run-up). dp = 0.03 m (10 layers, H/dp = 3, about 4,500 particles), until = 14 s.
     """
     wave = s.apply("wave", SolitaryWave(height=0.09))
-    paddle = s.apply("paddle", Piston(order=1, ramp_periods=0.0))
+    paddle = s.paddle(Piston(order=1, ramp_periods=0.0))
     beach = s.apply("beach", PlaneBeach(toe=4.0, slope=1.0 / 19.85))
     depth = s.value("flume.depth", 0.3)
     length = s.value("flume.length", 16.0)
@@ -351,7 +358,7 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     the centre line, spread 0.4 % of H (first harmonic: -10.2 %, -9.9 %, spread 0.3 %).
     """
     wave = s.apply("wave", RegularWave(height=0.05, period=1.0))
-    paddle = s.apply("paddle", Piston(order=2, ramp_periods=1.0))
+    paddle = s.paddle(Piston(order=2, ramp_periods=1.0))
     depth = s.value("flume.depth", 0.2)
     width = s.value("flume.width", 0.2)
     height = s.value("flume.height", 0.27)
@@ -405,6 +412,13 @@ def flume_builder(case: str, items: Mapping[str, str]) -> FlumeScene:
     """
     valid = flume_settable_keys(case)
     for key in items:
+        prefix, _, last = key.rpartition(".")
+        if key not in valid and last == "type" and any(k.startswith(f"{prefix}.") for k in valid):
+            raise FlumeCaseError(
+                f"--set: key {key!r}: the {prefix} of {case} is of a fixed type; to choose "
+                f"another, write the case as a scene file (watersim show-scene {case} > "
+                f"{case}.toml) and set its [{prefix}] type there"
+            )
         if key not in valid:
             raise FlumeCaseError(
                 f"--set: key {key!r} is unknown for {case}{did_you_mean(key, valid)}; valid "

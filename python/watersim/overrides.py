@@ -199,6 +199,44 @@ class Overrides:
                 changes[f.name] = self._typed(key, hints[f.name])
         return dataclasses.replace(obj, **changes) if changes else obj  # type: ignore[type-var]
 
+    def apply_tagged(self, prefix: str, obj: T, classes: Sequence[type]) -> T:
+        """:meth:`apply` for an object that one of several model classes may stand for
+        (``classes``, each a dataclass with its scene-file tag ``TAG``): ``prefix.type=TAG``
+        makes the object of that class from the fields the two share, then the ``prefix.field``
+        values apply. A field only another class has is offered, and refused unless its type is
+        chosen, so that no value is silently dropped.
+
+        Raises:
+            OverrideError: a ``prefix.type`` that is none of the tags (naming the allowed ones),
+                or a field of another class than the one chosen.
+        """
+        key = f"{prefix}.type"
+        self.keys.append(key)
+        tags: dict[str, type] = {c.TAG: c for c in classes}  # type: ignore[attr-defined]
+        if key in self.items:
+            tag = str(Override(key, self.items[key]).toml())
+            if tag not in tags:
+                allowed = ", ".join(f'"{t}"' for t in tags)
+                raise OverrideError(f"{key}: expected one of {allowed}, got {self.items[key]!r}")
+            if tags[tag] is not type(obj):
+                target = {f.name for f in dataclasses.fields(tags[tag]) if f.init}
+                shared = {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)  # type: ignore[arg-type]
+                          if f.init and f.name in target}
+                obj = tags[tag](**shared)
+        own = {f.name for f in dataclasses.fields(obj)}  # type: ignore[arg-type]
+        for cls in classes:
+            hints = typing.get_type_hints(cls)
+            for f in dataclasses.fields(cls):
+                if f.name in own or not f.init or not is_scalar(hints[f.name]):
+                    continue
+                other = f"{prefix}.{f.name}"
+                self.keys.append(other)
+                if other in self.items:
+                    raise OverrideError(
+                        f"{other}: a field of {prefix}.type={cls.TAG}, not of "  # type: ignore[attr-defined]
+                        f"{type(obj).TAG} (set {key}={cls.TAG} too)")  # type: ignore[attr-defined]
+        return self.apply(prefix, obj)
+
     def value(self, key: str, default: Any, hint: Any = float) -> Any:
         """A single parameter ``key`` of type ``hint`` (``default`` unless set)."""
         self.keys.append(key)
