@@ -149,8 +149,8 @@ class FlumeScene(SceneBuilder):
         wave: :class:`RegularWave`, :class:`IrregularWave`, :class:`SolitaryWave` or
             :class:`TabulatedMotion`.
         paddle: :class:`Piston` (default) or :class:`Flap`.
-        gauges: :class:`ElevationGauge`, :class:`VelocityProbe` and :class:`VelocityWindow`
-            objects.
+        gauges: gauge objects, of any class of :data:`~watersim.flume.gauges.Gauge` (every
+            gauge but the run-up gauge).
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
