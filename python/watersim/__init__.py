@@ -8,8 +8,9 @@ Public names:
   from an STL file), :class:`DampingZone`): the wave
   flume; :meth:`Flume.simulation` takes a wave (:class:`RegularWave`, :class:`IrregularWave`,
   :class:`FocusedWave`, :class:`SolitaryWave`, :class:`TabulatedMotion`), a paddle
-  (:class:`Piston`, :class:`Flap`) and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`, :class:`VelocityWindow`,
-  :class:`RunupGauge`) and gives a :class:`FlumeSimulation`.
+  (:class:`Piston`, :class:`Flap`) and gauges (:class:`ElevationGauge`, :class:`VelocityProbe`,
+  :class:`VelocityWindow`, :class:`PressureGauge`, :class:`RunupGauge`) and gives a
+  :class:`FlumeSimulation`.
 - :class:`SceneError`: a refused scene (a ``ValueError``; message ``field: reason``).
 - :class:`InstabilityError`: a run stopped by a stability monitor (a ``RuntimeError``).
 - :func:`front_position`: dam-break surge front from fluid positions.
@@ -40,6 +41,7 @@ from .flume import (
     MeshBeach,
     Piston,
     PlaneBeach,
+    PressureGauge,
     ProfileBeach,
     RegularWave,
     RunupGauge,
@@ -71,6 +73,7 @@ __all__ = [
     "MeshBeach",
     "Piston",
     "PlaneBeach",
+    "PressureGauge",
     "ProfileBeach",
     "RegularWave",
     "RunupGauge",

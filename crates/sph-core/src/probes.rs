@@ -59,6 +59,11 @@ pub enum GaugeSpec {
         method: SurfaceMethod,
         interval: Real,
     },
+    /// Fluid pressure at fixed points: the Shepard-normalised kernel interpolation of the fluid
+    /// particles' Tait pressures (the module's formula with `f_b = P(rho_b)`), as DualSPHysics
+    /// measures pressure at a point; records per point the pressure [Pa] and the kernel volume
+    /// sum (below 0.5 the point is out of the water).
+    Pressure { name: String, points: Vec<Vec<Real>>, interval: Real },
 }
 
 impl GaugeSpec {
@@ -67,7 +72,8 @@ impl GaugeSpec {
             GaugeSpec::Elevation { name, .. }
             | GaugeSpec::Velocity { name, .. }
             | GaugeSpec::Window { name, .. }
-            | GaugeSpec::Runup { name, .. } => name,
+            | GaugeSpec::Runup { name, .. }
+            | GaugeSpec::Pressure { name, .. } => name,
         }
     }
 
@@ -76,7 +82,8 @@ impl GaugeSpec {
             GaugeSpec::Elevation { interval, .. }
             | GaugeSpec::Velocity { interval, .. }
             | GaugeSpec::Window { interval, .. }
-            | GaugeSpec::Runup { interval, .. } => *interval,
+            | GaugeSpec::Runup { interval, .. }
+            | GaugeSpec::Pressure { interval, .. } => *interval,
         }
     }
 
@@ -86,17 +93,22 @@ impl GaugeSpec {
             GaugeSpec::Velocity { .. } => "velocity",
             GaugeSpec::Window { .. } => "window",
             GaugeSpec::Runup { .. } => "runup",
+            GaugeSpec::Pressure { .. } => "pressure",
         }
     }
 
     /// The quantities the gauge records, in the order of a sample's values (each point's
     /// columns in turn): elevation and run-up, z [m] (NaN when no water is found); velocity
-    /// probe and window, per point the velocity [m/s] then the kernel volume sum.
+    /// probe and window, per point the velocity [m/s] then the kernel volume sum; pressure, per
+    /// point the pressure [Pa] then the kernel volume sum.
     pub fn columns(&self, dim: usize) -> Vec<Column> {
         match self {
             GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => vec![Column { name: "z", size: 1 }],
             GaugeSpec::Velocity { .. } | GaugeSpec::Window { .. } => {
                 vec![Column { name: "velocity", size: dim }, Column { name: "kernel_sum", size: 1 }]
+            }
+            GaugeSpec::Pressure { .. } => {
+                vec![Column { name: "pressure", size: 1 }, Column { name: "kernel_sum", size: 1 }]
             }
         }
     }
@@ -104,7 +116,7 @@ impl GaugeSpec {
     /// The points a point gauge samples (none for a gauge on a line).
     pub fn sample_points(&self, dim: usize) -> Vec<Vec<Real>> {
         match self {
-            GaugeSpec::Velocity { points, .. } => points.clone(),
+            GaugeSpec::Velocity { points, .. } | GaugeSpec::Pressure { points, .. } => points.clone(),
             GaugeSpec::Window { min, max, n, .. } => {
                 let mut out = Vec::new();
                 let coord = |k: usize, i: usize| {
@@ -158,7 +170,7 @@ impl GaugeSpec {
         };
         match self {
             GaugeSpec::Elevation { position, .. } => check_point(format!("{field}.position"), position, true)?,
-            GaugeSpec::Velocity { points, .. } => {
+            GaugeSpec::Velocity { points, .. } | GaugeSpec::Pressure { points, .. } => {
                 if points.is_empty() {
                     return Err(Error::invalid(format!("{field}.points"), "needs at least one point"));
                 }
@@ -422,6 +434,10 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                     let values = self.at_points(&rec.points, |(w, _, _, v)| {
                         v.as_slice().iter().copied().chain(std::iter::once(w)).collect()
                     });
+                    rec.values.extend_from_slice(&values);
+                }
+                GaugeSpec::Pressure { .. } => {
+                    let values = self.at_points(&rec.points, |(w, _, pr, _)| vec![pr, w]);
                     rec.values.extend_from_slice(&values);
                 }
             }

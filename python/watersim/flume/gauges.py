@@ -1,4 +1,4 @@
-"""The gauges of a flume: surface elevation, velocity probes and windows, run-up."""
+"""The gauges of a flume: surface elevation, velocity probes and windows, pressure, run-up."""
 
 from __future__ import annotations
 
@@ -274,7 +274,12 @@ class ElevationGauge(_Gauge):
 
 @dataclass(frozen=True)
 class _GaugeAtPoints(_Gauge):
-    """A gauge at fixed points (x, z) or (x, y, z) [m]: their schema and checks."""
+    """A gauge at fixed points (x, z) or (x, y, z) [m]: their schema and checks.
+
+    Attributes:
+        points: the points, in flume coordinates (z from the floor).
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
 
     points: tuple[tuple[float, ...], ...]
     name: str | None = None
@@ -311,9 +316,7 @@ class VelocityProbe(_GaugeAtPoints):
     """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
 
     Attributes:
-        points: the points, in flume coordinates (z from the floor).
         name: record name; default ``velocity{i}``.
-        interval: sampling interval [s]; default the scene's ``sample_interval``.
     """
 
     TAG: ClassVar[str] = "velocity"
@@ -381,6 +384,41 @@ class VelocityWindow(_Gauge):
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``windows``: a :class:`VelocityRecord` per window."""
         gauges.windows = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=True)
+
+
+@dataclass(frozen=True)
+class PressureGauge(_GaugeAtPoints):
+    """Fluid pressure at fixed points (x, z) or (x, y, z) [m]: the Shepard-normalised kernel
+    interpolation of the particles' pressures (their Tait law), as DualSPHysics measures pressure
+    at a point; in still water, the hydrostatic ``rho0 g (depth - z)``.
+
+    Its record is ``FlumeGauges.records[name]``: ``t`` (n,) [s], ``points`` (p, dim) [m],
+    ``pressure`` (n, p) [Pa] and ``kernel_sum`` (n, p) (below :data:`DRY_KERNEL_SUM` the point
+    is out of the water and its pressure means nothing).
+
+    Attributes:
+        name: record name; default ``pressure{i}``.
+    """
+
+    TAG: ClassVar[str] = "pressure"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """One column per point of each pressure gauge: its pressure [Pa], ``nan`` where the
+        point is dry (gauge ``p0``, point (4, 0.1): ``p0_x4p000_z0p100_Pa``)."""
+        names = [s["name"] for s in gauges.setup._gauge_specs() if s["type"] == cls.TAG]
+        series: list[Series] = []
+        for name in names:
+            record = gauges.records[name]
+            t = np.asarray(record["t"], dtype=np.float64)
+            points = np.asarray(record["points"], dtype=np.float64)
+            pressure = np.asarray(record["pressure"], dtype=np.float64).reshape(t.size, -1)
+            dry = np.asarray(record["kernel_sum"]).reshape(t.size, -1) < DRY_KERNEL_SUM
+            for k, label in enumerate(point_labels(points)):
+                series.append((csv_column(f"{name}_{label}", "Pa"), t,
+                               np.where(dry[:, k], np.nan, pressure[:, k])))
+        return series
 
 
 @dataclass(frozen=True)
@@ -456,7 +494,7 @@ class RunupGauge(_Gauge):
         return [(csv_column(gauges.runup_name, "m"), gauges.runup_t, gauges.runup)]
 
 
-Gauge = ElevationGauge | VelocityProbe | VelocityWindow
+Gauge = ElevationGauge | VelocityProbe | VelocityWindow | PressureGauge
 """The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
 
 SCENE_GAUGE_TYPES: tuple[type[_Gauge], ...] = typing.get_args(Gauge)
