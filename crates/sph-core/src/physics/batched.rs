@@ -472,7 +472,7 @@ pub fn uses_avx2() -> bool {
 
 /// Fluid particles per parallel task (one scratch each). The last chunks decide how long one
 /// thread waits for the other at the loop's end: 128 gave the 2D dam break 1.91 times one
-/// thread's speed on two against 1.88 with 256, and 64 slowed one thread (Session 16).
+/// thread's speed on two against 1.88 with 256, and 64 slowed one thread (measured in ef0b49f).
 const CHUNK: usize = 128;
 
 /// Batched [`super::forces::fluid_forces_scalar`] for the artificial and laminar viscosity

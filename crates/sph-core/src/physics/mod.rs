@@ -13,7 +13,7 @@ use crate::scene::{Diffusion, ForcePrecision, Scene, Viscosity};
 /// loop adaptively into about four pieces per thread and splits a piece again only when
 /// another thread steals it: the thread that finishes first then waits while the other ends
 /// a piece of up to a quarter of the loop, as it can steal nothing smaller. With tasks this
-/// small the tail is one task (docs/benchmarks.md, Session 12).
+/// small the tail is one task (measured on the 2D dam break on two threads in d355c0a).
 pub const NEIGHBOUR_TASK: usize = 64;
 
 /// Viscosity model as a const generic of the force loop.

@@ -6,7 +6,7 @@
 //! (two of the integrator, the monitor, the exclusion) they read each particle's state up to
 //! four times from L3, and on two threads each loop was a fork-join that woke the second
 //! thread: the 2D dam break spent some 200-250 us per step in them on two threads, no less than
-//! on one (docs/benchmarks.md, Session 12). Here each task takes one chunk through all of them
+//! on one (phase timers, measured in eb24c1d). Here each task takes one chunk through all of them
 //! while it is in the core's L2 cache. The result is the same as the separate
 //! loops' bit for bit: each particle's arithmetic is unchanged, and the monitor reports the
 //! lowest bad id whichever chunk holds it.
