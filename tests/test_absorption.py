@@ -4,12 +4,20 @@
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 import watersim as ws
 from watersim import wave_theory as wt
+from watersim.validation.cases import (
+    SOLITARY_CLOSED_FLUME,
+    absorption_measure,
+    absorption_scene,
+    solitary_closed_flume,
+    solitary_residual,
+)
 
 G = 9.81
 
@@ -75,34 +83,42 @@ def test_a_tabulated_motion_has_no_target() -> None:
     assert law.absorption_target is None and law.absorption_gain is None
 
 
-SOLITARY_DEPTH = 0.2
-LENGTH = 2.0
-
-
-def _solitary_in_a_closed_flume(absorption: bool) -> tuple[ws.FlumeSimulation, float]:
-    """A solitary wave (H/d = 0.2) sent toward the vertical far wall of a 2 m flume, run until
-    the reflected wave has come back to the paddle and a second crossing's time has passed."""
-    flume = ws.Flume(length=LENGTH, depth=SOLITARY_DEPTH, damping=False)
-    wave = ws.SolitaryWave(height=0.04)
-    scene = flume.scene(wave, paddle=ws.Piston(absorption=absorption), dp=0.025, coefsound=10.0,
-                        gauges=[ws.ElevationGauge(0.3, name="near"),
-                                ws.ElevationGauge(0.5 * LENGTH, name="middle")],
-                        sample_interval=0.02)
-    c = float(wt.solitary_celerity(0.04, SOLITARY_DEPTH))
-    back = scene.law.duration + 2.0 * LENGTH / c  # the wave is back at the paddle
-    sim = scene.build()
-    sim.run(back + LENGTH / c)
-    return sim, back
+def test_absorption2d_measures_the_rereflected_share_of_the_incident_wave() -> None:
+    """absorption2d's measure on a synthetic record: an incident wave whose complex amplitude
+    gains 6 % of itself at a quarter-period phase once the re-reflection arrives, a reflected
+    wave as high as the incident one (the wall), a constant level."""
+    scene = absorption_scene(ws.Piston(absorption=True), dp=0.04, periods=30)
+    period, depth = scene.period, scene.flume.depth
+    assert period is not None
+    x = np.array([g.x for g in scene.gauges])
+    k, omega = float(wt.wavenumber(period, depth)), 2.0 * math.pi / period
+    t = np.arange(0.0, 30.0 * period, period / 40.0)
+    a0 = 0.02
+    changed = t > 12.0 * period
+    incident = np.where(changed, a0 * abs(1.0 + 0.06j), a0)[:, None]
+    phase = np.where(changed, math.atan(0.06), 0.0)[:, None]
+    eta = (incident * np.cos(omega * t[:, None] - k * x + phase)
+           + a0 * np.cos(omega * t[:, None] + k * x + 0.3) + 0.0004)
+    sim = SimpleNamespace(gauges=SimpleNamespace(uniform=lambda: (t, eta, None), x=x))
+    measured = absorption_measure(sim, scene)  # type: ignore[arg-type]
+    assert measured["rereflected"] == pytest.approx(0.06, rel=1e-3)
+    assert measured["incident_growth"] == pytest.approx(abs(1.0 + 0.06j) - 1.0, rel=1e-3)
+    assert measured["late"]["a_reflected"] == pytest.approx(a0, rel=1e-3)
+    assert measured["mean_level_over_H"] == pytest.approx(0.01)
+    assert measured["early"]["end"] <= 12.0 * period  # before the change
 
 
 @pytest.mark.slow
 def test_an_absorbing_piston_lets_a_reflected_solitary_wave_out() -> None:
+    """The solitary wave of absorption2d (H/d = 0.2 against the wall of a 2 m flume), run
+    until the reflected wave has come back to the paddle and a second crossing's time has
+    passed: the largest elevation the gauges see after the return."""
     residual = {}
     for absorbing in (False, True):
-        sim, back = _solitary_in_a_closed_flume(absorbing)
-        t, eta = sim.gauges.t, sim.gauges.elevation
-        late = t > back + 0.3
-        # the tank after the return: the largest elevation anywhere the gauges see
-        residual[absorbing] = float(np.nanmax(np.abs(eta[late])))
-    assert residual[False] > 0.6 * 0.04  # re-reflected by a fixed paddle
+        scene, back, until = solitary_closed_flume(absorbing, dp=0.025)
+        sim = scene.build()
+        sim.run(until)
+        residual[absorbing] = solitary_residual(sim, back)
+    height = SOLITARY_CLOSED_FLUME["height"]
+    assert residual[False] > 0.6 * height  # re-reflected by a fixed paddle
     assert residual[True] < 0.25 * residual[False], residual

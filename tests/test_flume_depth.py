@@ -15,7 +15,12 @@ import watersim as ws
 from watersim.bench_cases import dsph_scene
 from watersim.flume import lattice_dp, lattice_layers
 from watersim.flume_cases import FLUME_CASES, flume_builder
-from watersim.validation.cases import CASES, _flume2d_items, secondorder_scene
+from watersim.validation.cases import (
+    CASES,
+    _flume2d_items,
+    absorption_scene,
+    secondorder_scene,
+)
 
 
 def _filled(sim: ws.Simulation, dp: float) -> tuple[float, float | None]:
@@ -125,9 +130,11 @@ def test_a_case_dp_set_by_hand_must_divide_the_depth() -> None:
 
 
 def _validation_scene(name: str, dp: float) -> ws.FlumeScene:
-    """The validation case's scene at dp, built the way its runner builds it (flume2d and
-    secondorder2d by their helpers; bar2d, solitary2d and kimmoun2d are the built-in cases with
-    dp set, at the case's depth)."""
+    """The validation case's scene at dp, built the way its runner builds it (flume2d,
+    secondorder2d and absorption2d by their helpers; bar2d, solitary2d and kimmoun2d are the
+    built-in cases with dp set, at the case's depth)."""
+    if name == "absorption2d":
+        return absorption_scene(ws.Flap(absorption=True), dp, periods=1)
     if name == "flume2d":
         return _flume2d_items(dp, 2)[0]
     if name == "secondorder2d":

@@ -240,7 +240,8 @@ def write_report(
     cases: Mapping[str, Any] | None = None,
     header: Sequence[str] = (),
 ) -> Path:
-    """Write ``out_dir/README.md`` and one ``<case>.png`` per case.
+    """Write ``out_dir/README.md``, one ``<case>.png`` per case and, for a case with a
+    ``figure``, ``<case>-measured.png`` (its own measurements).
 
     Args:
         records: run records (:func:`watersim.validation.cases.make_record`).
@@ -281,7 +282,8 @@ def write_report(
 
 
 def _case_section(name: str, runs: list[Record], case: Any, out: Path) -> tuple[str, list[str]]:
-    """One case's section of the report (its figure drawn to ``out/<name>.png``): the runs,
+    """One case's section of the report (its figures drawn to ``out/<name>.png`` and, with
+    the case's own ``figure``, ``out/<name>-measured.png``): the runs,
     their measured values and failures, the convergence orders, the self-convergence, the
     Pareto front; and the answer the summary repeats: the cheapest run meeting the target."""
     primary = getattr(case, "primary", None)
@@ -291,6 +293,10 @@ def _case_section(name: str, runs: list[Record], case: Any, out: Path) -> tuple[
         metrics.insert(0, primary)
     png = f"{name}.png"
     _plot_case(name, runs, metrics, primary, out / png)
+    own = None
+    if getattr(case, "figure", None) is not None:
+        own = f"{name}-measured.png"
+        case.figure(runs, out / own)
     body = [f"## {name}", ""]
     if case is not None:
         body += [f"{case.description}. Reference: {case.reference}. "
@@ -315,6 +321,8 @@ def _case_section(name: str, runs: list[Record], case: Any, out: Path) -> tuple[
     if note:
         body += ["", note]
     body += ["", f"**Answer:** {answer}.", "", f"![{name}]({png})", ""]
+    if own is not None and (out / own).exists():
+        body += [f"![{name}: measured]({own})", ""]
     return answer, body
 
 

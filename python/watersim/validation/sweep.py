@@ -310,10 +310,12 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
         "validate", help="run validation cases at several resolutions and report error against "
         "run time",
         description="Run validation cases at several resolutions and report error against run "
-        "time. Without CASE and --quick it runs every case at its three resolutions, about two "
+        "time. Without CASE and --quick it runs every case at its own resolutions, about two "
         "hours on two cores (the committed report, docs/validation/README.md: 30 runs, 6,800 s "
-        "of wall time one after another, the longest, kimmoun2d, 40 minutes); --quick runs "
-        "every case once, coarse and short, in a few minutes. standing2d needs scipy (pip install "
+        "of wall time one after another, the longest, kimmoun2d, 40 minutes; absorption2d, added "
+        "later, takes 8 minutes of CPU at H/dp 1 and about three times that at 1.5); --quick "
+        "runs every case once, coarse and short, in a few minutes (absorption2d: 2.5 minutes "
+        "of CPU). standing2d needs scipy (pip install "
         "scipy, or pip install '.[validation]'); --scheduler needs dask[distributed]; both are "
         "checked before anything runs.")
     p.add_argument("cases", nargs="*", metavar="CASE", help=f"any of: {', '.join(CASES)} "
