@@ -11,7 +11,7 @@ import pytest
 
 import watersim as ws
 from watersim import wave_theory as wt
-from watersim.validation.cases import (
+from watersim.validation.absorption import (
     SOLITARY_CLOSED_FLUME,
     absorption_measure,
     absorption_scene,

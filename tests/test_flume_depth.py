@@ -15,10 +15,10 @@ import watersim as ws
 from watersim.bench_cases import dsph_scene
 from watersim.flume import lattice_dp, lattice_layers
 from watersim.flume_cases import FLUME_CASES, flume_builder
+from watersim.validation.absorption import absorption_scene
 from watersim.validation.cases import (
     CASES,
     _flume2d_items,
-    absorption_scene,
     secondorder_scene,
 )
 

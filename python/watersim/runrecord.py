@@ -48,7 +48,7 @@ VALIDATION_FIELDS: tuple[str, ...] = (
     "n_sims", "errors", "status", "message", "details",
 )
 """The fields of a ``watersim validate`` run record
-(:func:`watersim.validation.cases.make_record`)."""
+(:func:`watersim.validation.running.make_record`)."""
 
 INSTABILITY_FIELDS: tuple[str, ...] = ("kind", "step", "time", "particle", "position")
 """What a stability monitor's :class:`~watersim.InstabilityError` says about where it stopped."""

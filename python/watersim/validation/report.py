@@ -244,7 +244,7 @@ def write_report(
     ``figure``, ``<case>-measured.png`` (its own measurements).
 
     Args:
-        records: run records (:func:`watersim.validation.cases.make_record`).
+        records: run records (:func:`watersim.validation.running.make_record`).
         out_dir: folder (created).
         cases: the :class:`~watersim.validation.cases.Case` objects by name, for the
             descriptions, the resolution meaning and the accuracy targets (default
