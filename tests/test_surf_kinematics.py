@@ -61,3 +61,17 @@ def test_bad_input_names_the_argument() -> None:
                                     1.0)
     with pytest.raises(ValueError, match="^x: "):
         analysis.crest_celerity(np.zeros((t.size, 2)), t, [1.0, 0.5], 0.3, 1.0)
+
+
+def test_a_vertical_is_wet_from_the_bed_to_its_highest_wet_point() -> None:
+    """Next to the bed the fluid's kernel sum is about 0.5 in water (the bed's particles fill
+    the other half): a point below a wet one is in the water whatever its sum."""
+    from watersim.flume.analyse import _water_column
+
+    z = np.array([0.3, 0.1, 0.2, 0.4])  # in any order
+    kernel_sum = np.array([[0.9, 0.45, 0.8, 0.1],    # the bed point dips below 0.5
+                           [0.2, 0.48, 0.3, 0.0],    # a trough below z = 0.2
+                           [0.0, 0.0, 0.0, 0.0]])    # dry
+    assert _water_column(kernel_sum, z).tolist() == [[True, True, True, False],
+                                                     [False, False, False, False],
+                                                     [False, False, False, False]]

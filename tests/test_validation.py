@@ -393,3 +393,73 @@ def test_standing_wave_tank_keeps_the_tank_numerics() -> None:
                                       "coefsound", "cfl", "boundary")}
 
     assert numerics(StandingWaveTank(dp=0.05)) == numerics(Tank(dim=2, dp=0.05))
+
+
+def test_stansby2d_case_plumbing() -> None:
+    """stansby2d's scene, run length and metrics, without running it: the verticals stand at
+    seed 002 Table 3's gauges (13 and 14 left out), the run leaves the steady periods it says at
+    the last gauge, and each metric of a synthetic analysis.json is the one its note defines."""
+    import warnings
+
+    from watersim.flume import VelocityProbe
+    from watersim.flume_cases import STANSBY_GAUGES, flume_builder
+    from watersim.validation.stansby import (
+        STANSBY_STEADY_PERIODS,
+        stansby_metrics,
+        stansby_undertow_table,
+        stansby_until,
+    )
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        scene = flume_builder("stansby2d", {})
+    verticals = {g.name: g for g in scene.gauges if isinstance(g, VelocityProbe)}
+    gauges = [8, 10, 11, 12, 15, 17, 18, 19, 21, 23]
+    assert sorted(verticals) == sorted(f"u_gauge{n}" for n in gauges)
+    for n in gauges:
+        points = verticals[f"u_gauge{n}"].points
+        x = STANSBY_GAUGES[n - 1]
+        assert len(points) == 12 and all(p[0] == x for p in points)
+        assert points[0][1] == pytest.approx((x - 2.0) / 20.0 + 0.5 * scene.dp, abs=1e-4)
+        assert points[-1][1] == pytest.approx(0.34 + 0.105)
+    for quick in (False, True):
+        steady = stansby_until(scene, quick) - (
+            scene.law.ramp_duration + scene.arrival_time(7.6) + scene.period)
+        assert steady == pytest.approx(STANSBY_STEADY_PERIODS[quick] * 2.42)
+    table = stansby_undertow_table()
+    assert sorted(table) == [8, 10, 11, 12, 13, 14, 15, 17, 18, 19, 21, 23]
+    assert table[8] == 0.022 and table[23] == 0.021
+
+    wet_x = [5.3, 5.54, 5.6, 5.74]
+    result = {
+        "gauges": [{"x": 0.8, "still_depth": 0.34, "H_mean": 0.100},
+                   {"x": 1.1, "still_depth": 0.34, "H_mean": 0.103},
+                   {"x": 1.8, "still_depth": 0.34, "H_mean": 0.103},
+                   *({"x": x, "still_depth": 0.34 - (x - 2.0) / 20.0, "H_mean": None}
+                     for x in wet_x)],
+        "breaking": {"phase_averaged": {"position": 5.3, "wave_height": 0.14, "n_waves": 4}},
+        # + shoreward in analysis.json; gauge 13's vertical (none in the case) is not compared
+        "velocity_verticals": [{"name": "u_gauge8", "undertow": -0.032},
+                               {"name": "u_gauge10", "undertow": -0.008},
+                               {"name": "u_gauge13", "undertow": -1.0},
+                               {"name": "u_gauge11", "undertow": None}],
+        # midpoints of the wet gauges 5.3 | 5.54 | 5.6 | 5.74: the first is before gauge 8
+        "crest_celerity": {"x": [5.42, 5.57, 5.67], "ratio": [0.1, 0.9, 0.6]},
+    }
+    errors, details = stansby_metrics(result)
+    assert details["H_flat"] == pytest.approx(0.102)
+    assert errors["H_flat"] == pytest.approx(0.003 / 0.105)
+    assert errors["breaking_x_m"] == pytest.approx(0.24)  # 5.3 m: 0.24 m before 5.54 m
+    assert details["undertow_gauges"] == [8, 10]
+    assert details["undertow_seaward"] == [0.032, 0.008]
+    # differences +0.01 and -0.01 m/s against a Table 3 mean of 0.02 m/s
+    assert errors["undertow_rms"] == pytest.approx(0.5)
+    assert errors["undertow_mean"] == pytest.approx(0.0, abs=1e-12)
+    # pairs 0.06 m (0.9) and 0.14 m (0.6) apart: weighted mean 0.69, 0.01 below 0.70
+    assert details["celerity_surf_x"] == [5.57, 5.67]
+    assert details["celerity_ratio_surf"] == pytest.approx((0.06 * 0.9 + 0.14 * 0.6) / 0.2)
+    assert errors["celerity"] == pytest.approx(0.01)
+    result["breaking"]["phase_averaged"]["position"] = 5.6
+    assert stansby_metrics(result)[0]["breaking_x_m"] == 0.0
+    empty_errors, _ = stansby_metrics({"gauges": []})
+    assert set(empty_errors) == set(errors) and all(v is None for v in empty_errors.values())

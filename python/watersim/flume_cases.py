@@ -60,6 +60,7 @@ __all__ = [
     "BEJI_BATTJES_GAUGES",
     "FLUME_CASES",
     "STANSBY_GAUGES",
+    "STANSBY_UNDERTOW_GAUGES",
     "FlumeCase",
     "FlumeCaseError",
     "beji_battjes_harmonics",
@@ -74,6 +75,12 @@ STANSBY_GAUGES: tuple[float, ...] = (
 """Gauge x [m] of Stansby & Feng (2005), gauges 1-24, as printed in seed 002's Table 2 (gauges 13
 and 14 repeat the positions of 23 and 24, 7.2 and 7.6 m: kept as printed, so those columns come
 twice, the second with a ``_2`` suffix)."""
+
+STANSBY_UNDERTOW_GAUGES: tuple[int, ...] = (8, 10, 11, 12, 15, 17, 18, 19, 21, 23)
+"""Seed 002 gauges of Table 3 (depth-averaged undertow) that get a velocity vertical in
+stansby2d. Table 3 also lists gauges 13 and 14, left out: Table 2 prints them at 7.2 and 7.6 m,
+the positions of gauges 23 and 24 and out of order between gauge 12 (5.96 m) and gauge 15
+(6.18 m), so the table is probably wrong there and where they stood is not known."""
 
 BEJI_BATTJES_GAUGES: tuple[float, ...] = (2.0, 4.0, 5.2, 10.5, 12.5, 13.5, 14.5, 15.7, 17.3, 19.0,
                                           21.0)
@@ -264,7 +271,10 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     gauges of seed Table 2, plus gauges at 0.8 and 1.8 m over the flat floor for the reflection
     coefficient, and the run-up gauge. The elevation gauges take the highest particle (the
     surf-zone gauges stand in water a few particles deep at the default dp, which the kernel
-    method reads as dry). Flume 11 m long (seed Table 1's horizontal extent lx).
+    method reads as dry). Velocity verticals (12 points from dp/2 above the bed to H above the
+    still water) at the gauges of seed Table 3 (:data:`STANSBY_UNDERTOW_GAUGES`), for the
+    depth-averaged undertow analysis.json gives there. Flume 11 m long (seed Table 1's
+    horizontal extent lx).
     The seed does not give where the slope starts: ``beach.toe`` = 2.0 m is an estimate that puts
     depth-limited breaking (Green's-law shoaling, H/d = 0.78, d_b about 0.16 m) at the seed's
     incipient-breaking gauges 8-10 (x = 5.5-5.7 m); set it if you know better.
@@ -280,6 +290,13 @@ def case_stansby2d(s: _Settings) -> FlumeScene:
     gauges = [ElevationGauge(x, method="particle") for x in STANSBY_GAUGES]
     gauges += [ElevationGauge(0.8, method="particle"), ElevationGauge(1.8, method="particle")]
     num = s.numerics(dp=lattice_dp(depth, 0.03), **nm.FLUME_CASE, until=round(10 * wave.period, 3))
+    for n in STANSBY_UNDERTOW_GAUGES:
+        x = STANSBY_GAUGES[n - 1]
+        bed = max(0.0, (x - beach.toe) * beach.slope)
+        if bed < depth:
+            zs = np.linspace(bed + 0.5 * num["dp"], depth + wave.height, 12)
+            gauges.append(VelocityProbe(points=tuple((x, round(float(z), 4)) for z in zs),
+                                        name=f"u_gauge{n}"))
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 

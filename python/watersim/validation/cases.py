@@ -7,18 +7,20 @@ length of the case (``Case.resolution_meaning``: the column width over dp for da
 wave height over dp for waves, the depth over dp for the still tank), so ``dp = length /
 resolution`` (for the wave flumes snapped to ``depth / round(depth / dp)``, a whole number of
 particle layers: :meth:`Case.dp`). ``quick`` shortens the simulated time where the metric allows
-it (tank2d, the dam breaks, standing2d, bar2d, kimmoun2d, absorption2d); flume2d,
+it (tank2d, the dam breaks, standing2d, bar2d, kimmoun2d, stansby2d, absorption2d); flume2d,
 secondorder2d and solitary2d keep theirs, already the shortest their metrics need, and run only
 at their coarse quick resolution.
 
 References (see ``watersim/data/SOURCES.md``): Martin & Moyce (1952) dam-break front; linear
 theory and Stokes third-order dispersion; Beji & Battjes (1993) bar records; Synolakis (1987)
 run-up law; seed 001 (Roselli et al.) for Kimmoun & Branger (2007) breaking; for active
-absorption (absorption2d), the paddle's own wave measured before the first reflection returns.
+absorption (absorption2d), the paddle's own wave measured before the first reflection returns;
+seed 002 (Makris et al.) for Stansby & Feng (2005) breaking (:mod:`.stansby`).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
@@ -54,6 +56,7 @@ from .absorption import (
     _run_absorption,
 )
 from .running import _Clock, _with_until, advance, make_record
+from .stansby import STANSBY_HEIGHT, stansby_metrics, stansby_until
 
 __all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
 
@@ -785,6 +788,24 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[st
 
 
 # ------------------------------------------------------------------------------------------------
+# Stansby & Feng breaking (seed 002): metrics in validation/stansby.py
+
+
+def _run_stansby(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
+    """stansby2d (seed 002 flume, H = 0.105 m, T = 2.42 s, 1:20 beach from 2.0 m) until
+    :func:`stansby_until` (about 25.2 s; quick 20.8 s); metrics by :func:`stansby_metrics`."""
+    dp = case.dp(res)
+    scene, notes = _with_until("stansby2d", {"dp": repr(dp)},
+                               functools.partial(stansby_until, quick=quick))
+    clock = _Clock()
+    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    errors, details = stansby_metrics(result)
+    details.update(until=scene.until, notes=notes, analysis_notes=result.get("notes", []))
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
+
+
+# ------------------------------------------------------------------------------------------------
 # registry
 
 
@@ -942,6 +963,35 @@ CASES: dict[str, Case] = {
              "in runs.json).",
              report_details=("breaking_x", "breaker_height", "max_mean_height",
                              "crest_velocity_over_sqrt_gD", "runup_over_H"), depth=0.705),
+        Case("stansby2d", "seed 002: regular waves spilling on a 1:20 beach, about 10 periods",
+             "seed 002 (Makris et al. on Stansby & Feng 2005): H = 0.105 m, incipient breaking "
+             "at gauges 8-10, its SPHysics undertow (Table 3) and crest celerity",
+             "wave height / dp", STANSBY_HEIGHT, (2.5, 3.4, 4.5), (2.5,), "H_flat", 0.03,
+             "height over the flat floor within 3 % of H = 0.105 m", _run_stansby,
+             "The built-in stansby2d (stream-function piston law, chosen by the wave's Ursell "
+             "number 48; beach toe at 2.0 m, an estimate: the seed does not give it); "
+             "resolution 3.4 is the built-in's default dp (0.34 / 11 m). "
+             "`H_flat`: the mean of the mean zero-crossing heights at the three gauges over the "
+             "flat floor (0.8, 1.1 and 1.8 m) against H = 0.105 m. `breaking_x_m`: distance [m] "
+             "from the breaking point of the phase-averaged wave (where its H/d first reaches "
+             "0.78, interpolated between gauges; analysis.json `breaking.phase_averaged`) to "
+             "the seed's incipient-breaking gauges 8-10, 5.54-5.74 m (0 inside). "
+             "`undertow_rms`: the RMS difference between the simulated depth-averaged undertow "
+             "(analysis.json `velocity_verticals[].undertow`: the time-mean u from the bed to "
+             "the trough level, on 12-point verticals at the gauges) and seed 002 Table 3, over "
+             "the mean of Table 3; `undertow_mean`: the relative error of the mean over those "
+             "gauges (the seed: \"a seaward mean around 0.02 m/sec\"). Table 3 holds the seed's "
+             "own SPHysics values, not measurements. Compared at gauges 8, 10, 11, 12, 15, 17, "
+             "18, 19, 21, 23; Table 3's gauges 13 and 14 are left out: Table 2 prints them at "
+             "7.2 and 7.6 m, the positions of gauges 23 and 24, out of order between 5.96 and "
+             "6.18 m, so where they stood is not known. `celerity`: distance of the crest "
+             "celerity over sqrt(g d) in the surf zone to the seed's 0.70-0.80: analysis.json "
+             "`crest_celerity.ratio` between neighbouring gauges from gauge 8 (5.54 m) to the "
+             "last gauge (7.6 m), averaged with each pair weighted by its spacing (pairs 2 cm "
+             "apart time the crest to a fraction of the 0.05 s sample interval); d is the "
+             "pair's mean still-water depth, without set-up.",
+             report_details=("H_flat", "breaking_x", "undertow_seaward_mean",
+                             "celerity_ratio_surf"), depth=0.34),
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "
              "vertical wall for 60 periods, piston and flap, absorption on and off; a solitary "
              "wave against the wall",

@@ -1,0 +1,116 @@
+"""Seed 002 (Makris et al., SPHysics on Stansby & Feng 2005's flume) as the ``stansby2d``
+validation case: its reference values, its run length and its metrics from analysis.json (the
+runner and the registry entry are in :mod:`watersim.validation.cases`)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from importlib import resources
+from typing import Any
+
+import numpy as np
+
+from ..flume import FlumeScene
+from ..flume_cases import STANSBY_GAUGES, STANSBY_UNDERTOW_GAUGES
+from . import metrics as m
+
+__all__ = ["stansby_metrics", "stansby_undertow_table", "stansby_until"]
+
+
+STANSBY_HEIGHT = 0.105
+"""Wave height H [m] of seed 002 Table 1."""
+STANSBY_FLAT_GAUGES: tuple[float, ...] = (0.8, 1.1, 1.8)
+"""The gauges over the flat floor [m], before the beach's toe at 2.0 m: gauge 1 of seed 002
+Table 2 and stansby2d's two extra gauges."""
+STANSBY_BREAKING_X: tuple[float, float] = (5.54, 5.74)
+"""Seed 002's incipient-breaking region [m]: gauges 8-10 (Table 2, Fig. 3)."""
+STANSBY_CELERITY_RATIO: tuple[float, float] = (0.70, 0.80)
+"""Seed 002's crest celerity in the surf zone over sqrt(g d): "70~80 %" (text under Fig. 4)."""
+STANSBY_UNDERTOW_FILE = "stansby_feng2005_undertow_table3_sphysics.csv"
+"""Seed 002 Table 3 (watersim/data, SOURCES.md): its SPHysics depth-averaged undertow."""
+
+
+def stansby_undertow_table() -> dict[int, float]:
+    """Seed 002 Table 3: depth-averaged undertow [m/s, seaward positive] by gauge number (the
+    seed's own SPHysics values, not measurements)."""
+    text = resources.files("watersim.data").joinpath(STANSBY_UNDERTOW_FILE).read_text("utf-8")
+    rows = [line.split(",") for line in text.splitlines()[1:] if line.strip()]
+    return {int(gauge): float(value) for gauge, _, value in rows}
+
+
+def _distance_to_range(value: float, low: float, high: float) -> float:
+    """How far ``value`` lies outside ``[low, high]`` (0 inside)."""
+    return max(low - value, 0.0, value - high)
+
+
+def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
+                                                        dict[str, Any]]:
+    """stansby2d's errors and the values behind them, from its analysis.json (``result``);
+    the report note of the ``stansby2d`` case defines each."""
+    errors: dict[str, float | None] = {}
+    details: dict[str, Any] = {}
+    # generated height: mean zero-crossing height over the flat floor
+    flat = {g["x"]: g.get("H_mean") for g in result.get("gauges", [])
+            if any(abs(g["x"] - x) < 1e-6 for x in STANSBY_FLAT_GAUGES)}
+    heights = [h for h in flat.values() if h is not None]
+    details["H_flat_by_x"] = flat
+    details["H_flat"] = float(np.mean(heights)) if heights else None
+    errors["H_flat"] = m.relative_error(details["H_flat"], STANSBY_HEIGHT) if heights else None
+    # breaking point of the phase-averaged wave against gauges 8-10
+    pa = (result.get("breaking") or {}).get("phase_averaged") or {}
+    x_b = pa.get("position")
+    details.update(breaking_x=x_b, breaking_height=pa.get("wave_height"),
+                   breaking_n_waves=pa.get("n_waves"))
+    errors["breaking_x_m"] = (_distance_to_range(x_b, *STANSBY_BREAKING_X)
+                              if x_b is not None else None)
+    # undertow on the verticals at Table 3's gauges (analysis.json: + shoreward)
+    table = stansby_undertow_table()
+    simulated: dict[int, float] = {}
+    for v in result.get("velocity_verticals", []):
+        gauge = int(v["name"].removeprefix("u_gauge"))
+        if gauge in STANSBY_UNDERTOW_GAUGES and v.get("undertow") is not None:
+            simulated[gauge] = -v["undertow"]
+    compared = sorted(simulated)
+    details.update(undertow_gauges=compared,
+                   undertow_seaward=[simulated[n] for n in compared],
+                   undertow_seaward_seed=[table[n] for n in compared])
+    if compared:
+        sim = np.array([simulated[n] for n in compared])
+        ref = np.array([table[n] for n in compared])
+        details["undertow_seaward_mean"] = float(np.mean(sim))
+        details["undertow_seaward_mean_seed"] = float(np.mean(ref))
+        errors["undertow_rms"] = float(np.sqrt(np.mean((sim - ref) ** 2)) / np.mean(ref))
+        errors["undertow_mean"] = m.relative_error(float(np.mean(sim)), float(np.mean(ref)))
+    else:
+        errors["undertow_rms"] = errors["undertow_mean"] = None
+    # crest celerity shoreward of gauge 8, each neighbouring pair weighted by its spacing
+    cc = result.get("crest_celerity") or {}
+    wet = sorted({g["x"] for g in result.get("gauges", []) if g["still_depth"] > 0.0})
+    gaps = {round(0.5 * (a + b), 9): b - a for a, b in zip(wet[:-1], wet[1:], strict=True)}
+    pairs = [(x, r, gaps.get(round(x, 9))) for x, r in zip(cc.get("x", []), cc.get("ratio", []),
+                                                          strict=True)
+             if x >= STANSBY_BREAKING_X[0] and r is not None]
+    details["celerity_surf_x"] = [x for x, _, _ in pairs]
+    details["celerity_surf_ratio"] = [r for _, r, _ in pairs]
+    if pairs and all(w is not None for _, _, w in pairs):
+        ratio = float(sum(r * w for _, r, w in pairs) / sum(w for _, _, w in pairs))
+        details["celerity_ratio_surf"] = ratio
+        details["celerity_ratio_surf_median"] = float(np.median([r for _, r, _ in pairs]))
+        errors["celerity"] = _distance_to_range(ratio, *STANSBY_CELERITY_RATIO)
+    else:
+        details["celerity_ratio_surf"] = None
+        errors["celerity"] = None
+    return errors, details
+
+
+STANSBY_STEADY_PERIODS = {False: 5.0, True: 3.2}
+"""Steady periods of record at the last gauge (7.6 m) of stansby2d, full and quick runs: the
+phase averages' waves (quick: just above the analysis's three-period minimum)."""
+
+
+def stansby_until(scene: FlumeScene, quick: bool) -> float:
+    """stansby2d's run length [s]: ramp + arrival at the last gauge + one period (where the
+    analysis starts each gauge's window) + :data:`STANSBY_STEADY_PERIODS`."""
+    assert scene.period is not None
+    return (scene.law.ramp_duration + scene.arrival_time(max(STANSBY_GAUGES))
+            + (1.0 + STANSBY_STEADY_PERIODS[quick]) * scene.period)
