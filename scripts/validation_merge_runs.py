@@ -1,6 +1,6 @@
 """Replace the (case, resolution) runs of runs.json by the reruns in the given JSON files, in
 place; a run at a resolution runs.json does not hold yet goes after its case's last run, in
-resolution order."""
+resolution order, and the runs of a case runs.json does not hold yet go at its end."""
 import json
 import sys
 
@@ -25,10 +25,12 @@ for i, r in enumerate(runs):
               f"status {rerun['status']}, errors {old['errors']} -> {rerun['errors']}")
 for key in sorted(set(new) - seen, key=lambda k: k[1]):
     same_case = [i for i, r in enumerate(runs) if r["case"] == key[0]]
-    assert same_case, f"{key}: no run of this case in {path}"
-    at = max((i for i in same_case if float(runs[i]["resolution"]) < key[1]),
-             default=same_case[0] - 1)
-    runs.insert(at + 1, new[key])
+    if same_case:
+        at = max((i for i in same_case if float(runs[i]["resolution"]) < key[1]),
+                 default=same_case[0] - 1)
+        runs.insert(at + 1, new[key])
+    else:
+        runs.append(new[key])
     print(f"{key}: added, dp {new[key]['dp']:.6g}, particles {new[key]['n_particles']}, "
           f"cpu {new[key]['cpu_s']:.1f}, status {new[key]['status']}, errors {new[key]['errors']}")
 with open(path, "w") as fh:

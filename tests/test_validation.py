@@ -439,7 +439,8 @@ def test_stansby2d_case_plumbing() -> None:
                      for x in wet_x)],
         "breaking": {"phase_averaged": {"position": 5.3, "wave_height": 0.14, "n_waves": 4}},
         # + shoreward in analysis.json; gauge 13's vertical (none in the case) is not compared
-        "velocity_verticals": [{"name": "u_gauge8", "undertow": -0.032},
+        "velocity_verticals": [{"name": "u_gauge8", "undertow": -0.032,
+                                "crest_velocity_over_sqrt_gD": 0.75},
                                {"name": "u_gauge10", "undertow": -0.008},
                                {"name": "u_gauge13", "undertow": -1.0},
                                {"name": "u_gauge11", "undertow": None}],
@@ -451,6 +452,7 @@ def test_stansby2d_case_plumbing() -> None:
     assert errors["H_flat"] == pytest.approx(0.003 / 0.105)
     assert errors["breaking_x_m"] == pytest.approx(0.24)  # 5.3 m: 0.24 m before 5.54 m
     assert details["undertow_gauges"] == [8, 10]
+    assert details["crest_velocity_over_sqrt_gD"] == {"8": 0.75}
     assert details["undertow_seaward"] == [0.032, 0.008]
     # differences +0.01 and -0.01 m/s against a Table 3 mean of 0.02 m/s
     assert errors["undertow_rms"] == pytest.approx(0.5)

@@ -989,9 +989,13 @@ CASES: dict[str, Case] = {
              "`crest_celerity.ratio` between neighbouring gauges from gauge 8 (5.54 m) to the "
              "last gauge (7.6 m), averaged with each pair weighted by its spacing (pairs 2 cm "
              "apart time the crest to a fraction of the 0.05 s sample interval); d is the "
-             "pair's mean still-water depth, without set-up.",
+             "pair's mean still-water depth, without set-up. "
+             "`details.crest_velocity_over_sqrt_gD_max`: the largest phase-averaged velocity "
+             "under the crest over sqrt(g d) on those verticals, another reading of the seed's "
+             "\"maximum celerity ... 70~80 %\", which it draws from its velocity field.",
              report_details=("H_flat", "breaking_x", "undertow_seaward_mean",
-                             "celerity_ratio_surf"), depth=0.34),
+                             "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
+             depth=0.34),
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "
              "vertical wall for 60 periods, piston and flap, absorption on and off; a solitary "
              "wave against the wall",

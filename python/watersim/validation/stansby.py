@@ -66,10 +66,19 @@ def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
     # undertow on the verticals at Table 3's gauges (analysis.json: + shoreward)
     table = stansby_undertow_table()
     simulated: dict[int, float] = {}
+    crest_u: dict[int, float] = {}
     for v in result.get("velocity_verticals", []):
         gauge = int(v["name"].removeprefix("u_gauge"))
-        if gauge in STANSBY_UNDERTOW_GAUGES and v.get("undertow") is not None:
+        if gauge not in STANSBY_UNDERTOW_GAUGES:
+            continue
+        if v.get("undertow") is not None:
             simulated[gauge] = -v["undertow"]
+        if v.get("crest_velocity_over_sqrt_gD") is not None:
+            crest_u[gauge] = v["crest_velocity_over_sqrt_gD"]
+    # the largest phase-averaged u under the crest over sqrt(g d): another reading of the
+    # seed's "maximum celerity ... 70~80 %" (which it draws from its velocity field, Fig. 4)
+    details["crest_velocity_over_sqrt_gD"] = {str(n): crest_u[n] for n in sorted(crest_u)}
+    details["crest_velocity_over_sqrt_gD_max"] = max(crest_u.values()) if crest_u else None
     compared = sorted(simulated)
     details.update(undertow_gauges=compared,
                    undertow_seaward=[simulated[n] for n in compared],
