@@ -86,6 +86,15 @@ def test_the_core_gauge_types_are_the_gauge_classes_tags() -> None:
     assert [flume.GAUGE_TYPES[s["type"]] for s in specs] == [type(g) for g in gauges]
 
 
+def test_every_gauge_class_is_exported_from_its_own_file() -> None:
+    """A gauge class is listed once, in ``gauges.__all__``; both packages export that list."""
+    for cls in flume.GAUGE_TYPES.values():
+        assert cls.__name__ in flume_gauges.__all__
+        assert getattr(ws, cls.__name__) is cls
+        assert getattr(flume, cls.__name__) is cls
+    assert set(flume_gauges.__all__) <= set(ws.__all__) & set(flume.__all__)
+
+
 @dataclasses.dataclass(frozen=True)
 class _PointGauge(flume_gauges._Gauge):
     """A gauge kind the records do not know: its class alone says how it reads and writes."""

@@ -24,14 +24,15 @@ UNTIL = 1.2
 
 @pytest.fixture(scope="module")
 def scene_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A small flume with a moving piston, a beach, two elevation gauges, a velocity probe and
-    a run-up gauge: about 600 particles, a few seconds to UNTIL."""
+    """A small flume with a moving piston, a beach, two elevation gauges, a velocity probe, a
+    pressure gauge and a run-up gauge: about 600 particles, a few seconds to UNTIL."""
     flume = ws.Flume(length=2.4, depth=0.24, damping=False,
                      beach=ws.PlaneBeach(toe=1.4, slope=0.3))
     scene = flume.scene(ws.RegularWave(height=0.04, period=1.0), paddle=ws.Piston(ramp_periods=0.5),
                         dp=0.04, until=UNTIL, sample_interval=0.02,
                         gauges=[ws.ElevationGauge(0.5), ws.ElevationGauge(1.0),
-                                ws.VelocityProbe(points=((0.5, 0.15),))],
+                                ws.VelocityProbe(points=((0.5, 0.15),)),
+                                ws.PressureGauge(points=((0.5, 0.06), (0.5, 0.3)), name="p")],
                         runup=ws.RunupGauge())
     path = tmp_path_factory.mktemp("scene") / "small.toml"
     path.write_text(sf.dumps(scene))
@@ -133,8 +134,15 @@ def test_load_gives_labelled_records(straight: Path) -> None:
     assert "runup" in data and data["runup"].attrs["units"] == "m"
     velocity = [name for name in data.data_vars if name.startswith("velocity_")]
     assert len(velocity) == 1 and data[velocity[0]].attrs["units"] == "m/s"
+    pressure = data["pressure_p"]
+    assert pressure.dims == ("time_p", "point_p") and pressure.attrs["units"] == "Pa"
+    assert data["points_p"].values.tolist() == [[0.5, 0.06], [0.5, 0.3]]
+    # the upper point is above the water (NaN, a low kernel sum), the lower one under it
+    assert np.all(np.isnan(pressure.values[:, 1])) and np.all(data["kernel_sum_p"].values[:, 1] < 0.5)
+    assert np.nanmean(pressure.values[:, 0]) > 0.5 * 1000.0 * 9.81 * (0.24 - 0.06)
     csv = np.genfromtxt(straight / "gauges.csv", delimiter=",", names=True)
     assert np.array_equal(csv["t_s"], data["time"].values)
+    assert np.array_equal(csv["p_x0p500_z0p060_Pa"], pressure.values[:, 0])
 
 
 def _snapshot(folder: Path) -> dict[str, bytes]:

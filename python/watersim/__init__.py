@@ -30,7 +30,6 @@ from ._version import __version__
 from .checkpoint import load_checkpoint, save_checkpoint
 from .flume import (
     DampingZone,
-    ElevationGauge,
     Flap,
     Flume,
     FlumeGauges,
@@ -41,27 +40,23 @@ from .flume import (
     MeshBeach,
     Piston,
     PlaneBeach,
-    PressureGauge,
     ProfileBeach,
     RegularWave,
-    RunupGauge,
     SolitaryWave,
     TabulatedMotion,
-    VelocityProbe,
-    VelocityWindow,
-    elevation_gauges_between,
 )
+from .flume import gauges as _gauges
+from .flume.gauges import *  # noqa: F403 (its __all__: the gauge classes)
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .rundir import load
 from .scenefile import load as load_scene
 from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
-
 __all__ = [
+    *_gauges.__all__,
     "DamBreak",
     "DampingZone",
-    "ElevationGauge",
     "Flap",
     "Flume",
     "FlumeGauges",
@@ -73,21 +68,16 @@ __all__ = [
     "MeshBeach",
     "Piston",
     "PlaneBeach",
-    "PressureGauge",
     "ProfileBeach",
     "RegularWave",
-    "RunupGauge",
     "SceneBuilder",
     "SceneError",
     "Simulation",
     "SolitaryWave",
     "TabulatedMotion",
     "Tank",
-    "VelocityProbe",
-    "VelocityWindow",
     "__version__",
     "analysis",
-    "elevation_gauges_between",
     "front_error",
     "front_position",
     "load",

@@ -31,13 +31,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from . import analysis as an
 from ._core import SceneError
 from ._version import __version__
 from .checkpoint import load_checkpoint, read_header, write_state
-from .flume import FlumeScene, FlumeSimulation
+from .flume import GAUGE_TYPES, FlumeScene, FlumeSimulation
 from .scenefile import SceneFile
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
@@ -315,43 +313,22 @@ def load(directory: str | Path) -> xarray.Dataset:
       dry; coordinates ``x`` (and ``y`` in 3D) and ``still_depth`` per gauge;
     - ``runup`` (time_runup): run-up, elevation of the wet tip above the still water [m];
     - ``velocity_NAME`` (time_NAME, point, component) for each velocity probe and window [m/s],
-      with the points' coordinates, and ``kernel_sum_NAME`` (below 0.5: the point is dry).
+      with the points' coordinates, and ``kernel_sum_NAME`` (below 0.5: the point is dry);
+    - ``pressure_NAME`` (time_NAME, point_NAME) for each pressure gauge [Pa], NaN where dry.
+
+    Each gauge class gives its own variables (``dataset_variables``).
 
     The attributes carry the case's scene (``scene_toml``) and the run's time and steps.
     """
     import xarray as xr
 
     reopened = reopen(directory)
-    gauges = reopened.sim.gauges
-    data: dict[str, Any] = {
-        "elevation": (("time", "gauge"), gauges.elevation,
-                      {"units": "m", "long_name": "surface elevation above the still water"}),
-    }
-    coords: dict[str, Any] = {
-        "time": ("time", gauges.t, {"units": "s"}),
-        "gauge": ("gauge", list(gauges.names)),
-        "x": ("gauge", gauges.x, {"units": "m", "long_name": "position along the flume"}),
-        "still_depth": ("gauge", gauges.still_depth, {"units": "m"}),
-    }
-    if gauges.y is not None:
-        coords["y"] = ("gauge", gauges.y, {"units": "m", "long_name": "position across"})
-    if gauges.runup is not None and gauges.runup_t is not None:
-        coords["time_runup"] = ("time_runup", gauges.runup_t, {"units": "s"})
-        data["runup"] = ("time_runup", gauges.runup,
-                         {"units": "m", "long_name": "run-up above the still water"})
-    for name, record in {**gauges.velocity, **gauges.windows}.items():
-        tname = f"time_{name}"
-        coords[tname] = (tname, record.t, {"units": "s"})
-        points = np.asarray(record.points)
-        pname = f"point_{name}"
-        coords[f"points_{name}"] = ((pname, "axis"), points, {"units": "m"})
-        n = record.t.size
-        data[f"velocity_{name}"] = ((tname, pname, "component"),
-                                    np.asarray(record.velocity).reshape(n, len(points), -1),
-                                    {"units": "m/s"})
-        data[f"kernel_sum_{name}"] = ((tname, pname),
-                                      np.asarray(record.kernel_sum).reshape(n, len(points)),
-                                      {"units": "1", "long_name": "kernel sum (< 0.5: dry)"})
+    data: dict[str, Any] = {}
+    coords: dict[str, Any] = {}
+    for kind in GAUGE_TYPES.values():
+        kind_data, kind_coords = kind.dataset_variables(reopened.sim.gauges)
+        data.update(kind_data)
+        coords.update(kind_coords)
     scene_text = (Path(directory) / SCENE_FILE).read_text(encoding="utf-8")
     return xr.Dataset(data, coords=coords, attrs={
         "scene_toml": scene_text, "t_end": reopened.time, "steps": reopened.steps,

@@ -103,6 +103,29 @@ fn gauges_read_still_water() {
     assert!(r.values.iter().all(|z| (z - 0.2).abs() < 0.02), "{:?}", r.values);
 }
 
+/// The pressure gauge's columns, (pressure, kernel sum) per point, read the hydrostatic
+/// pressure `rho0 g (d - z)` in still water and a dry point above it.
+#[test]
+fn pressure_gauge_reads_the_hydrostatic_pressure() {
+    let paddle = r#"{"kind": "piston", "x": 0.0, "law": {"type": "harmonic", "components": []}}"#;
+    let gauges = r#"{"type": "pressure", "name": "p", "points": [[1.0, 0.06], [1.0, 0.12], [1.0, 0.35]], "interval": 0.02}"#;
+    let mut sim = flume(2.0, paddle, gauges);
+    sim.run_until(0.1).expect("stable");
+    let p = &sim.gauges()[0];
+    assert_eq!((p.kind, p.width, p.points.len()), ("pressure", 6, 6));
+    assert_eq!(p.columns.iter().map(|c| c.name).collect::<Vec<_>>(), ["pressure", "kernel_sum"]);
+    assert!(p.t.len() >= 5, "{} samples", p.t.len());
+    for sample in p.values.chunks(p.width) {
+        for (k, z) in [0.06, 0.12].iter().enumerate() {
+            let hydrostatic = 1000.0 * 9.81 * (0.2 - z);
+            let (pressure, kernel_sum) = (sample[2 * k], sample[2 * k + 1]);
+            assert!(kernel_sum > 0.9, "wet point {k}: kernel sum {kernel_sum}");
+            assert!((pressure / hydrostatic - 1.0).abs() < 0.03, "point {k}: {pressure} Pa against {hydrostatic}");
+        }
+        assert_eq!(sample[5], 0.0, "the point above the water is dry");
+    }
+}
+
 /// The kernel gauge reads still water at its depth next to a side wall and in a corner too:
 /// there the walls' particles fill part of the kernel, and the plain fluid sum would put the
 /// surface low (it reads a full column as half empty within 2h of a wall).

@@ -54,18 +54,10 @@ Modules, one concern each: :mod:`.bed` (beaches, damping zone), :mod:`.waves`, :
 small input checks the models share.
 """
 
+from . import gauges
 from .analyse import analyse_flume
 from .bed import DampingZone, MeshBeach, PlaneBeach, ProfileBeach, SteepSlopeWarning
-from .gauges import (
-    GAUGE_TYPES,
-    SURFACE_METHODS,
-    ElevationGauge,
-    PressureGauge,
-    RunupGauge,
-    VelocityProbe,
-    VelocityWindow,
-    elevation_gauges_between,
-)
+from .gauges import *  # noqa: F403 (its __all__: the gauge classes)
 from .lattice import lattice_dp, lattice_layers
 from .paddles import RAMPS, Flap, Piston, flap_height_to_stroke_hinged
 from .records import FlumeGauges, VelocityRecord
@@ -81,14 +73,12 @@ from .waves import (
 )
 
 __all__ = [
+    *gauges.__all__,
     "CHOICES",
-    "GAUGE_TYPES",
     "RAMPS",
     "SPECTRA",
-    "SURFACE_METHODS",
     "TAGS",
     "DampingZone",
-    "ElevationGauge",
     "Flap",
     "Flume",
     "FocusedWave",
@@ -99,18 +89,13 @@ __all__ = [
     "MeshBeach",
     "Piston",
     "PlaneBeach",
-    "PressureGauge",
     "ProfileBeach",
     "RegularWave",
-    "RunupGauge",
     "SolitaryWave",
     "SteepSlopeWarning",
     "TabulatedMotion",
-    "VelocityProbe",
-    "VelocityWindow",
     "VelocityRecord",
     "analyse_flume",
-    "elevation_gauges_between",
     "flap_height_to_stroke_hinged",
     "lattice_dp",
     "lattice_layers",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import re
 import typing
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -21,6 +22,23 @@ if TYPE_CHECKING:
 
 Series = tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]
 """A gauge's column of ``gauges.csv``: ``(column name, t [s], values)``."""
+
+__all__ = [
+    "GAUGE_TYPES",
+    "SURFACE_METHODS",
+    "ElevationGauge",
+    "PressureGauge",
+    "RunupGauge",
+    "VelocityProbe",
+    "VelocityWindow",
+    "elevation_gauges_between",
+]
+"""Exported as they are by :mod:`watersim.flume` and :mod:`watersim` (a new gauge class is
+listed here, in its own file, and nowhere else)."""
+
+Variables = tuple[dict[str, Any], dict[str, Any]]
+"""A gauge kind's share of :func:`watersim.load`'s Dataset: ``(data variables, coordinates)``,
+each ``name: (dims, values, attrs)``."""
 
 _NOT_IN_A_NAME = re.compile(r"[^A-Za-z0-9_]")
 
@@ -109,6 +127,29 @@ class VelocityRecord:
         )
 
 
+_KERNEL_SUM_ATTRS = {"units": "1", "long_name": "kernel sum (< 0.5: dry)"}
+
+
+def _velocity_variables(records: dict[str, VelocityRecord]) -> Variables:
+    """``velocity_NAME`` (time_NAME, point_NAME, component) [m/s] and ``kernel_sum_NAME`` of
+    velocity probes or windows, the points in ``points_NAME``."""
+    data: dict[str, Any] = {}
+    coords: dict[str, Any] = {}
+    for name, record in records.items():
+        tname, pname = f"time_{name}", f"point_{name}"
+        points = np.asarray(record.points)
+        n = record.t.size
+        coords[tname] = (tname, record.t, {"units": "s"})
+        coords[f"points_{name}"] = ((pname, "axis"), points, {"units": "m"})
+        data[f"velocity_{name}"] = ((tname, pname, "component"),
+                                    np.asarray(record.velocity).reshape(n, len(points), -1),
+                                    {"units": "m/s"})
+        data[f"kernel_sum_{name}"] = ((tname, pname),
+                                      np.asarray(record.kernel_sum).reshape(n, len(points)),
+                                      _KERNEL_SUM_ATTRS)
+    return data, coords
+
+
 class _Gauge:
     """What every gauge class declares besides its schema: how its core records become arrays
     of :class:`~watersim.flume.FlumeGauges`, and its columns of ``gauges.csv``."""
@@ -138,6 +179,11 @@ class _Gauge:
             gauges.records[str(raw["name"])] = {
                 key: np.asarray(value) for key, value in raw.items() if key not in ("type", "name")
             }
+
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """This kind's variables and coordinates in :func:`watersim.load` (none by default)."""
+        return {}, {}
 
     @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
@@ -265,6 +311,22 @@ class ElevationGauge(_Gauge):
         return np.where(deep, first, fallback)
 
     @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """``elevation`` (time, gauge) [m], NaN when dry; per gauge ``x`` (and ``y`` in 3D) and
+        ``still_depth``."""
+        coords: dict[str, Any] = {
+            "time": ("time", gauges.t, {"units": "s"}),
+            "gauge": ("gauge", list(gauges.names)),
+            "x": ("gauge", gauges.x, {"units": "m", "long_name": "position along the flume"}),
+            "still_depth": ("gauge", gauges.still_depth, {"units": "m"}),
+        }
+        if gauges.y is not None:
+            coords["y"] = ("gauge", gauges.y, {"units": "m", "long_name": "position across"})
+        attrs = {"units": "m", "long_name": "surface elevation above the still water"}
+        data = {"elevation": (("time", "gauge"), gauges.elevation, attrs)}
+        return data, coords
+
+    @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
         """One column per gauge: eta above the SWL [m], ``nan`` when dry
         (``eta_x1.000``: ``eta_x1p000_m``)."""
@@ -327,6 +389,10 @@ class VelocityProbe(_GaugeAtPoints):
         """``velocity``: a :class:`VelocityRecord` per probe."""
         gauges.velocity = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=False)
 
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        return _velocity_variables(gauges.velocity)
+
 
 @dataclass(frozen=True)
 class VelocityWindow(_Gauge):
@@ -385,6 +451,10 @@ class VelocityWindow(_Gauge):
         """``windows``: a :class:`VelocityRecord` per window."""
         gauges.windows = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=True)
 
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        return _velocity_variables(gauges.windows)
+
 
 @dataclass(frozen=True)
 class PressureGauge(_GaugeAtPoints):
@@ -404,20 +474,42 @@ class PressureGauge(_GaugeAtPoints):
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """Per gauge ``pressure_NAME`` (time_NAME, point_NAME) [Pa], NaN where dry, and
+        ``kernel_sum_NAME``; the points in ``points_NAME``."""
+        data: dict[str, Any] = {}
+        coords: dict[str, Any] = {}
+        for name, t, points, pressure, kernel_sum in cls._records(gauges):
+            tname, pname = f"time_{name}", f"point_{name}"
+            coords[tname] = (tname, t, {"units": "s"})
+            coords[f"points_{name}"] = ((pname, "axis"), points, {"units": "m"})
+            data[f"pressure_{name}"] = ((tname, pname), pressure,
+                                        {"units": "Pa", "long_name": "fluid pressure"})
+            data[f"kernel_sum_{name}"] = ((tname, pname), kernel_sum, _KERNEL_SUM_ATTRS)
+        return data, coords
+
+    @classmethod
+    def _records(cls, gauges: FlumeGauges) -> Iterator[tuple[str, Any, Any, Any, Any]]:
+        """Per pressure gauge: its name, ``t`` (n,), ``points`` (p, dim), the pressure (n, p)
+        with NaN where dry, and the kernel sum (n, p)."""
+        for spec in gauges.setup._gauge_specs():
+            if spec["type"] != cls.TAG:
+                continue
+            record = gauges.records[spec["name"]]
+            t = np.asarray(record["t"], dtype=np.float64)
+            kernel_sum = np.asarray(record["kernel_sum"], dtype=np.float64).reshape(t.size, -1)
+            pressure = np.asarray(record["pressure"], dtype=np.float64).reshape(t.size, -1)
+            yield (spec["name"], t, np.asarray(record["points"], dtype=np.float64),
+                   np.where(kernel_sum < DRY_KERNEL_SUM, np.nan, pressure), kernel_sum)
+
+    @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
         """One column per point of each pressure gauge: its pressure [Pa], ``nan`` where the
         point is dry (gauge ``p0``, point (4, 0.1): ``p0_x4p000_z0p100_Pa``)."""
-        names = [s["name"] for s in gauges.setup._gauge_specs() if s["type"] == cls.TAG]
         series: list[Series] = []
-        for name in names:
-            record = gauges.records[name]
-            t = np.asarray(record["t"], dtype=np.float64)
-            points = np.asarray(record["points"], dtype=np.float64)
-            pressure = np.asarray(record["pressure"], dtype=np.float64).reshape(t.size, -1)
-            dry = np.asarray(record["kernel_sum"]).reshape(t.size, -1) < DRY_KERNEL_SUM
+        for name, t, points, pressure, _ in cls._records(gauges):
             for k, label in enumerate(point_labels(points)):
-                series.append((csv_column(f"{name}_{label}", "Pa"), t,
-                               np.where(dry[:, k], np.nan, pressure[:, k])))
+                series.append((csv_column(f"{name}_{label}", "Pa"), t, pressure[:, k]))
         return series
 
 
@@ -485,6 +577,15 @@ class RunupGauge(_Gauge):
             gauges.runup_offset = float(raw[0])
         gauges.runup_raw = raw
         gauges.runup = raw - gauges.runup_offset
+
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """``runup`` (time_runup) [m] above the still water."""
+        if gauges.runup is None or gauges.runup_t is None:
+            return {}, {}
+        return ({"runup": ("time_runup", gauges.runup,
+                           {"units": "m", "long_name": "run-up above the still water"})},
+                {"time_runup": ("time_runup", gauges.runup_t, {"units": "s"})})
 
     @classmethod
     def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
