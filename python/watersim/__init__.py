@@ -25,28 +25,11 @@ Public names:
 from __future__ import annotations
 
 from . import analysis, numerics, wave_theory
+from . import flume as _flume
 from ._core import InstabilityError, SceneError
 from ._version import __version__
 from .checkpoint import load_checkpoint, save_checkpoint
-from .flume import (
-    DampingZone,
-    Flap,
-    Flume,
-    FlumeGauges,
-    FlumeScene,
-    FlumeSimulation,
-    FocusedWave,
-    IrregularWave,
-    MeshBeach,
-    Piston,
-    PlaneBeach,
-    ProfileBeach,
-    RegularWave,
-    SolitaryWave,
-    TabulatedMotion,
-)
-from .flume import gauges as _gauges
-from .flume.gauges import *  # noqa: F403 (its __all__: the gauge classes)
+from .flume import *  # noqa: F403 (its __all__: the flume's models, gauges and analysis)
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .rundir import load
 from .scenefile import load as load_scene
@@ -54,27 +37,12 @@ from .scenes import DamBreak, SceneBuilder, Tank
 from .simulation import Simulation
 
 __all__ = [
-    *_gauges.__all__,
+    *_flume.__all__,
     "DamBreak",
-    "DampingZone",
-    "Flap",
-    "Flume",
-    "FlumeGauges",
-    "FlumeScene",
-    "FlumeSimulation",
-    "FocusedWave",
     "InstabilityError",
-    "IrregularWave",
-    "MeshBeach",
-    "Piston",
-    "PlaneBeach",
-    "ProfileBeach",
-    "RegularWave",
     "SceneBuilder",
     "SceneError",
     "Simulation",
-    "SolitaryWave",
-    "TabulatedMotion",
     "Tank",
     "__version__",
     "analysis",

@@ -42,13 +42,9 @@ from typing import Any
 
 import tomli_w
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
 from . import flume, overrides
 from . import numerics as nm
+from ._compat import tomllib
 from ._core import SceneError
 from .checks import _positive
 from .errors import did_you_mean

@@ -191,6 +191,23 @@ class _Gauge:
         return []
 
 
+class _VelocityGauge(_Gauge):
+    """Velocity probes and windows: a :class:`VelocityRecord` per gauge in
+    ``FlumeGauges.<RECORDS>`` (``velocity`` or ``windows``)."""
+
+    RECORDS: ClassVar[str]
+
+    @classmethod
+    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
+        records = VelocityRecord.by_name(raws, gauges.setup.flume.dim,
+                                         window=cls.RECORDS == "windows")
+        setattr(gauges, cls.RECORDS, records)
+
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        return _velocity_variables(getattr(gauges, cls.RECORDS))
+
+
 @dataclass(frozen=True)
 class ElevationGauge(_Gauge):
     """Free-surface elevation on the vertical line through (x[, y]).
@@ -374,7 +391,7 @@ class _GaugeAtPoints(_Gauge):
 
 
 @dataclass(frozen=True)
-class VelocityProbe(_GaugeAtPoints):
+class VelocityProbe(_VelocityGauge, _GaugeAtPoints):
     """Fluid velocity (Shepard-interpolated) at fixed points (x, z) or (x, y, z) [m].
 
     Attributes:
@@ -384,18 +401,11 @@ class VelocityProbe(_GaugeAtPoints):
     TAG: ClassVar[str] = "velocity"
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
-    @classmethod
-    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
-        """``velocity``: a :class:`VelocityRecord` per probe."""
-        gauges.velocity = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=False)
-
-    @classmethod
-    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
-        return _velocity_variables(gauges.velocity)
+    RECORDS: ClassVar[str] = "velocity"
 
 
 @dataclass(frozen=True)
-class VelocityWindow(_Gauge):
+class VelocityWindow(_VelocityGauge):
     """PIV-like window: velocity on a regular grid of ``n`` points per axis over ``[min, max]``.
 
     In 2D ``min``, ``max`` are (x, z) and ``n`` is (nx, nz); in 3D (x, y, z) and (nx, ny, nz)
@@ -446,14 +456,7 @@ class VelocityWindow(_Gauge):
         return {"type": self.TAG, "name": name, "min": list(self.min), "max": list(self.max),
                 "n": list(self.n), "interval": interval}
 
-    @classmethod
-    def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
-        """``windows``: a :class:`VelocityRecord` per window."""
-        gauges.windows = VelocityRecord.by_name(raws, gauges.setup.flume.dim, window=True)
-
-    @classmethod
-    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
-        return _velocity_variables(gauges.windows)
+    RECORDS: ClassVar[str] = "windows"
 
 
 @dataclass(frozen=True)
