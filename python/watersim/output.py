@@ -2,8 +2,11 @@
 and a ``.pvd`` collection that ParaView opens as one time series.
 
 Each snapshot holds every particle as a vertex with the point fields ``velocity`` [m/s],
-``density`` [kg/m^3], ``pressure`` [Pa], ``kind`` (0 fluid, 1 fixed wall, 2 moving wall,
-3 excluded) and ``id`` (creation order), in particle-id order so that files of one run line up.
+``vorticity`` [1/s] (of the fluid, :func:`watersim.fields.particle_vorticity`; zero on walls,
+NaN for a particle too isolated for a gradient; in 2D the vector ``(0, omega_y, 0)`` across
+the x-z plane), ``density`` [kg/m^3], ``pressure`` [Pa], ``kind`` (0 fluid, 1 fixed wall,
+2 moving wall, 3 excluded) and ``id`` (creation order), in particle-id order so that files of
+one run line up.
 2D runs are written in the x-z plane of ParaView's 3D space (coordinates ``(x, 0, z)``), so that
 "up" is z in both dimensions.
 """
@@ -22,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._jsonio import json_ready
+from .fields import particle_vorticity
 from .simulation import Simulation
 
 __all__ = ["RunLog", "RunOutputs", "SnapshotWriter", "snapshot_mesh"]
@@ -46,6 +50,7 @@ def snapshot_mesh(sim: Simulation) -> meshio.Mesh:
     n = points.shape[0]
     point_data = {
         "velocity": _to_3d(np.asarray(core.velocities)[order], dim),
+        "vorticity": _fluid_vorticity(sim, order),
         "density": np.asarray(core.densities)[order].copy(),
         "pressure": np.asarray(core.pressures)[order].copy(),
         "kind": np.asarray(core.kinds)[order].astype(np.int32),
@@ -53,6 +58,25 @@ def snapshot_mesh(sim: Simulation) -> meshio.Mesh:
     }
     cells = [("vertex", np.arange(n, dtype=np.int64).reshape(-1, 1))]
     return meshio.Mesh(points, cells, point_data=point_data)
+
+
+def _fluid_vorticity(sim: Simulation, order: npt.NDArray[np.intp]) -> npt.NDArray[np.float64]:
+    """(N, 3) vorticity of the fluid particles in ``order``, zero for the others."""
+    core = sim.core
+    params = core.params()
+    x = np.asarray(core.positions)[order]
+    v = np.asarray(core.velocities)[order]
+    rho = np.asarray(core.densities)[order]
+    fluid = np.asarray(core.kinds)[order] == 0
+    out = np.zeros((x.shape[0], 3))
+    if fluid.any():
+        omega = particle_vorticity(x[fluid], v[fluid], params["mass"] / rho[fluid],
+                                   params["h"], params["kernel"])
+        if core.dim == 2:
+            out[fluid, 1] = omega
+        else:
+            out[fluid] = omega
+    return out
 
 
 class SnapshotWriter:

@@ -15,8 +15,8 @@ What is drawn depends on what the run wrote:
 - ``runup.png``: the run-up record and the distribution of the run-up of each wave
   (``analysis.json`` ``runup.values``; without them, of the analysed part's samples);
 - ``velocity_NAME.png`` per ``velocity_NAME.csv``: a velocity probe's components against time
-  at each point; a window's mean over its wet points against time and its field at the last
-  sample;
+  at each point; a window's mean over its wet points against time, its field at the last
+  sample, and its time-mean velocity over the time-mean vorticity where always wet;
 - ``front.png``: dam-break surge front of ``front.csv`` against Martin & Moyce (1952) in their
   dimensionless form ``x / a`` against ``t sqrt(2 g / a)`` (a the column width);
 - ``snapshot.png``: the particles of the last ``.vtu`` snapshot, fluid coloured by speed.
@@ -486,7 +486,8 @@ def _plot_velocity(csv_path: Path, out: Path) -> Path | None:
         axes[-1, 0].set_xlabel("t [s]")
         fig.suptitle(f"velocity probe {name} (gaps: the point is dry)", fontsize=10)
     else:
-        fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4), gridspec_kw={"width_ratios": [3, 2]})
+        fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4),
+                                            gridspec_kw={"width_ratios": [3, 2, 2]})
         for c in components:
             stack = np.stack([data[:, point[c]] for point in columns.values()], axis=1)
             wet = np.isfinite(stack).any(axis=1)
@@ -510,9 +511,40 @@ def _plot_velocity(csv_path: Path, out: Path) -> Path | None:
         ax2.set_ylabel("z [m]")
         ax2.set_title(f"velocity at t = {t[-1]:.3g} s", fontsize=9)
         ax2.set_aspect("equal", adjustable="datalim")
+        _plot_mean_vorticity(ax3, fig, pts, np.stack(
+            [data[:, [p[c] for p in columns.values()]] for c in (horizontal, vertical)], axis=-1))
         fig.suptitle(f"velocity window {name}: {len(columns)} points", fontsize=10)
     fig.tight_layout()
     return _save(fig, out / f"{csv_path.stem}.png")
+
+
+def _plot_mean_vorticity(ax: Any, fig: Any, points: npt.NDArray[np.float64],
+                         velocity: npt.NDArray[np.float64]) -> None:
+    """The window's time-mean velocity (arrows) over its time-mean vorticity ``omega_y``
+    (colours) at the points wet in every sample (below the trough), as seed 002 draws them
+    (Stansby & Feng 2005, Figs. 6-7); a note where the points are not a 2D grid.
+    ``velocity``: (n_samples, n_points, 2) horizontal and vertical components, NaN when dry."""
+    from .fields import grid_vorticity
+
+    xs, zs = np.unique(points[:, 0]), np.unique(points[:, -1])
+    if points.shape[1] != 2 or xs.size < 2 or zs.size < 2 or xs.size * zs.size != len(points):
+        ax.text(0.5, 0.5, "time-mean vorticity: drawn for 2D windows only", ha="center",
+                transform=ax.transAxes, fontsize=8)
+        ax.set_axis_off()
+        return
+    grid = np.full((zs.size, xs.size, 2), np.nan)
+    always_wet = np.isfinite(velocity).all(axis=(0, 2))
+    rows, cols = np.searchsorted(zs, points[:, 1]), np.searchsorted(xs, points[:, 0])
+    grid[rows[always_wet], cols[always_wet]] = velocity[:, always_wet].mean(axis=0)
+    omega = grid_vorticity(grid, (float(zs[1] - zs[0]), float(xs[1] - xs[0])))
+    limit = float(np.nanmax(np.abs(omega))) if np.isfinite(omega).any() else 1.0
+    mesh = ax.pcolormesh(xs, zs, omega, cmap="RdBu_r", vmin=-limit, vmax=limit, shading="nearest")
+    fig.colorbar(mesh, ax=ax, label="mean vorticity du/dz - dw/dx [1/s]")
+    ax.quiver(xs[None, :].repeat(zs.size, 0), zs[:, None].repeat(xs.size, 1),
+              grid[..., 0], grid[..., 1])
+    ax.set_xlabel("x [m]")
+    ax.set_title("time mean where always wet", fontsize=9)
+    ax.set_aspect("equal", adjustable="datalim")
 
 
 def _plot_front(csv_path: Path, summary: dict[str, Any] | None, out: Path) -> Path | None:
