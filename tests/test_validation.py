@@ -25,7 +25,14 @@ from watersim.validation.report import (
     self_convergence,
     write_report,
 )
-from watersim.validation.sweep import ValidateError, parse_resolutions, plan, run_sweep
+from watersim.validation.sweep import (
+    ValidateError,
+    check_scheduler_answers,
+    parse_resolutions,
+    parse_scheduler,
+    plan,
+    run_sweep,
+)
 
 G = 9.81
 
@@ -378,6 +385,45 @@ def test_dask_local_cluster_executor(tmp_path) -> None:
                          json_path=tmp_path / "runs.json")
     assert runs[0]["status"] == "ok" and runs[0]["steps"] > 0
     assert json.loads((tmp_path / "runs.json").read_text())[0]["case"] == "tank2d"
+
+
+@pytest.mark.parametrize(("address", "reason"), [
+    ("", "expected tcp://HOST:PORT"), ("   ", "expected tcp://HOST:PORT"),
+    ("tcp://", "expected tcp://HOST:PORT"), ("host", "expected tcp://HOST:PORT"),
+    ("tcp://host:port", "port must be a number"), ("tcp://h:0", "port must be a number"),
+    ("h:70000", "port must be a number"), ("tcp://h:1/x", "expected tcp://HOST:PORT"),
+    ("tls://h:8786", "tls:// is not supported"), ("inproc://x", "inproc:// is not supported"),
+])
+def test_a_bad_scheduler_address_is_refused_naming_the_option(address: str, reason: str) -> None:
+    with pytest.raises(ValidateError, match=rf"^--scheduler: .*{reason}"):
+        parse_scheduler(address)
+    assert main(["validate", "tank2d", "--scheduler", address]) == 2
+
+
+def test_scheduler_addresses_that_are_accepted() -> None:
+    assert parse_scheduler("tcp://10.0.0.1:8786") == "tcp://10.0.0.1:8786"
+    assert parse_scheduler("host.example:8786") == "tcp://host.example:8786"
+    assert parse_scheduler("tcp://[::1]:8786") == "tcp://[::1]:8786"
+
+
+def test_a_silent_listener_is_refused_within_the_timeout() -> None:
+    """A port that accepts and never answers (not a scheduler): refused, not a hang."""
+    import socket
+    import threading
+    import time
+
+    pytest.importorskip("dask.distributed")
+    accepted: list[socket.socket] = []
+    with socket.socket() as server:
+        server.bind(("127.0.0.1", 0))
+        server.listen()
+        threading.Thread(target=lambda: accepted.append(server.accept()[0]), daemon=True).start()
+        start = time.monotonic()
+        with pytest.raises(ValidateError, match="--scheduler: no Dask scheduler answered"):
+            check_scheduler_answers(f"tcp://127.0.0.1:{server.getsockname()[1]}", timeout=1.0)
+        assert time.monotonic() - start < 5.0
+    for conn in accepted:
+        conn.close()
 
 
 def test_standing_wave_tank_keeps_the_tank_numerics() -> None:

@@ -9,7 +9,8 @@ keeps what it has) and write the report.
 
 Runs go to a :class:`concurrent.futures.ProcessPoolExecutor` with ``--jobs`` workers (1: in this
 process, with a tqdm bar per run), or, with ``--scheduler``, to the Dask distributed scheduler
-at ADDRESS (``Client(address).submit``), so the same sweep runs on a cluster unchanged.
+at ADDRESS (``Client(address).submit``), so the same sweep runs on a cluster unchanged. The
+scheduler must be trusted: Dask sends the results back pickled, and unpickling runs code.
 """
 
 from __future__ import annotations
@@ -141,6 +142,59 @@ def _remote_run(name: str, resolution: float, quick: bool) -> dict[str, Any]:
     return _stamp(record)
 
 
+SCHEDULER_CONNECT_TIMEOUT_S = 30.0
+"""How long ``--scheduler`` waits for the scheduler to answer before it gives up [s]."""
+
+
+def parse_scheduler(address: str) -> str:
+    """The Dask scheduler address ``--scheduler`` takes: ``tcp://HOST:PORT`` or ``HOST:PORT``
+    (TCP). Refused with :class:`ValidateError` naming ``--scheduler``: an empty or malformed
+    address, a port outside 1-65535, and the protocols the command line cannot serve
+    (``tls://`` needs certificates it has no option for; ``inproc://`` is a scheduler inside
+    this process, which there is not)."""
+    text = address.strip()
+    scheme, sep, rest = text.partition("://")
+    if not sep:
+        scheme, rest = "tcp", text
+    if scheme != "tcp":
+        raise ValidateError(f"--scheduler: the protocol {scheme}:// is not supported here "
+                            f"(give tcp://HOST:PORT), got {address!r}")
+    host, colon, port = rest.rpartition(":")
+    if not colon or not host or "/" in rest or any(c.isspace() for c in rest):
+        raise ValidateError(f"--scheduler: expected tcp://HOST:PORT, got {address!r}")
+    if not (port.isdigit() and len(port) <= 5 and 1 <= int(port) <= 65535):
+        raise ValidateError(f"--scheduler: the port must be a number from 1 to 65535, "
+                            f"got {address!r}")
+    return f"tcp://{host}:{int(port)}"
+
+
+def check_scheduler_answers(address: str, timeout: float = SCHEDULER_CONNECT_TIMEOUT_S) -> None:
+    """Ask the scheduler at ``address`` who it is, within ``timeout`` [s] for each of connect,
+    send and answer: refused with :class:`ValidateError` naming ``--scheduler`` when nothing
+    answers, or something that is not a Dask scheduler does (``Client()`` itself waits without
+    end on a listener that accepts and stays silent)."""
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def identity() -> Any:
+        comm = await asyncio.wait_for(connect(address, timeout=timeout), timeout)
+        try:
+            await asyncio.wait_for(comm.write({"op": "identity"}), timeout)
+            return await asyncio.wait_for(comm.read(), timeout)
+        finally:
+            comm.abort()
+
+    try:
+        answer = asyncio.run(identity())
+    except (OSError, TimeoutError) as exc:
+        raise ValidateError(f"--scheduler: no Dask scheduler answered at {address} within "
+                            f"{timeout:g} s ({type(exc).__name__}{': ' if str(exc) else ''}"
+                            f"{exc})") from None
+    if not (isinstance(answer, dict) and answer.get("type") == "Scheduler"):
+        raise ValidateError(f"--scheduler: {address} answered, but not as a Dask scheduler")
+
+
 def run_sweep(
     tasks: Sequence[tuple[str, float]],
     quick: bool = False,
@@ -194,7 +248,9 @@ def run_sweep(
             except ImportError:
                 raise ValidateError("--scheduler: needs dask.distributed "
                                     "(pip install 'watersim[dask]')") from None
-            with Client(scheduler) as client:
+            address = parse_scheduler(scheduler)
+            check_scheduler_answers(address)
+            with Client(address, timeout=SCHEDULER_CONNECT_TIMEOUT_S) as client:
                 futures = {client.submit(_remote_run, name, res, quick, pure=False): i
                            for i, (name, res) in enumerate(tasks)}
                 for fut in dask_completed(futures):
@@ -281,6 +337,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if args.scheduler is not None and args.jobs != 1:
             raise ValidateError("--jobs: not used with --scheduler (the cluster's workers run "
                                 "the sweep)")
+        if args.scheduler is not None:
+            parse_scheduler(args.scheduler)
         check_modules(tasks, args.scheduler)
         if args.json is not None:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
@@ -327,7 +385,8 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
     p.add_argument("--report", metavar="DIR", help="write DIR/README.md and PNG plots")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="local worker processes (1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask distributed "
-                   "scheduler (e.g. tcp://host:8786)")
+                   "scheduler (tcp://host:8786); it must be trusted: the results it sends are "
+                   "unpickled here")
     p.add_argument("--from-json", metavar="FILE", help="report on the runs in FILE instead of "
                    "running")
     p.add_argument("--note", action="append", metavar="TEXT", help="a line for the report's "
