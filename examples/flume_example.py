@@ -27,6 +27,7 @@ import numpy.typing as npt
 
 import watersim as ws
 from watersim import analysis as an
+from watersim import rundir
 from watersim.cost import SpeedMeter
 from watersim.cost import estimate as estimate_cost
 from watersim.flume import lattice_dp, lattice_layers
@@ -183,38 +184,52 @@ def run_flume(
             raise SystemExit(f"--replot: cannot read the results in {out}: {exc}") from None
     else:
         out.mkdir(parents=True, exist_ok=True)
-        sim = flume.simulation(**kwargs)
-        scene = sim.setup
-        print(f"{sim!r}", file=sys.stderr)
-        threads = int(os.environ.get("RAYON_NUM_THREADS") or os.cpu_count() or 1)
-        print(estimate_cost(sim, float(scene.until), threads).line(), file=sys.stderr)
-        meter = SpeedMeter(sim, float(scene.until), lambda line: print(line, file=sys.stderr))
-
-        def keep(s: ws.Simulation) -> None:
-            s.write_gauges_csv(out / "gauges.csv")  # a stopped run keeps its records so far
-            meter(s)
-
-        start = time.perf_counter()
-        sim.run(scene.until, progress=True, callback_every=float(scene.until) / 50.0,
-                callback=keep)
-        wall = time.perf_counter() - start
-        sim.write_gauges_csv(out / "gauges.csv")
-        analysis = sim.analyse()
-        (out / "analysis.json").write_text(json.dumps(analysis, indent=1), encoding="utf-8")
-        records = Records.from_gauges(sim.gauges)
-        records.save(out / "records.npz")
-        summary = {
-            "dp": scene.dp, "until": scene.until, "n_particles": sim.n_particles,
-            "n_fluid": sim.n_fluid, "steps": sim.steps, "wall_s": wall,
-            "threads": os.environ.get("RAYON_NUM_THREADS"),
-        }
-        (out / "summary.json").write_text(json.dumps(summary, indent=1), encoding="utf-8")
-        print(f"{sim.n_particles} particles ({sim.n_fluid} fluid), {sim.steps} steps, "
-              f"{wall:.0f} s wall", file=sys.stderr)
+        try:
+            with rundir.RunFolder(out, claim=False):  # one run at a time writes into out
+                scene, records, analysis = _run(flume, kwargs, out)
+        except rundir.RunDirError as exc:
+            raise SystemExit(f"--out: {exc}") from None
     written = figures(scene, records, analysis, out)
     for path in written:
         print(path)
     return written
+
+
+def _run(flume: ws.Flume, kwargs: dict[str, Any], out: Path
+         ) -> tuple[ws.FlumeScene, Records, dict[str, Any]]:
+    """Run the flume into ``out`` (held): gauges.csv as it goes, then analysis.json,
+    records.npz and summary.json."""
+    sim = flume.simulation(**kwargs)
+    scene = sim.setup
+    # a run killed before its end leaves this, not the summary of an earlier run
+    (out / "summary.json").write_text(json.dumps({"status": "running"}), encoding="utf-8")
+    print(f"{sim!r}", file=sys.stderr)
+    threads = int(os.environ.get("RAYON_NUM_THREADS") or os.cpu_count() or 1)
+    print(estimate_cost(sim, float(scene.until), threads).line(), file=sys.stderr)
+    meter = SpeedMeter(sim, float(scene.until), lambda line: print(line, file=sys.stderr))
+
+    def keep(s: ws.Simulation) -> None:
+        s.write_gauges_csv(out / "gauges.csv")  # a stopped run keeps its records so far
+        meter(s)
+
+    start = time.perf_counter()
+    sim.run(scene.until, progress=True, callback_every=float(scene.until) / 50.0,
+            callback=keep)
+    wall = time.perf_counter() - start
+    sim.write_gauges_csv(out / "gauges.csv")
+    analysis = sim.analyse()
+    (out / "analysis.json").write_text(json.dumps(analysis, indent=1), encoding="utf-8")
+    records = Records.from_gauges(sim.gauges)
+    records.save(out / "records.npz")
+    summary = {
+        "status": "ok", "dp": scene.dp, "until": scene.until, "n_particles": sim.n_particles,
+        "n_fluid": sim.n_fluid, "steps": sim.steps, "wall_s": wall,
+        "threads": os.environ.get("RAYON_NUM_THREADS"),
+    }
+    (out / "summary.json").write_text(json.dumps(summary, indent=1), encoding="utf-8")
+    print(f"{sim.n_particles} particles ({sim.n_fluid} fluid), {sim.steps} steps, "
+          f"{wall:.0f} s wall", file=sys.stderr)
+    return scene, records, analysis
 
 
 def _from_run(run: Path, t_start: float | None, out: Path
@@ -222,8 +237,6 @@ def _from_run(run: Path, t_start: float | None, out: Path
     """The scene, records and analysis of the ``watersim run`` folder ``run`` (its last
     checkpoint), the analysis windows starting at ``t_start`` if given; writes analysis.json
     and records.npz to ``out``."""
-    from watersim import rundir
-
     try:
         sim = rundir.reopen(run).sim
     except (OSError, rundir.RunDirError) as exc:

@@ -8,6 +8,8 @@ import math
 from pathlib import Path
 from typing import Any
 
+from ._files import write_text_atomic
+
 
 def json_ready(value: Any) -> Any:
     """NumPy values as Python ones and non-finite floats as None (strict JSON)."""
@@ -23,8 +25,6 @@ def json_ready(value: Any) -> Any:
 
 
 def write_json_atomic(path: Path, data: Any, indent: int) -> None:
-    """Write ``data`` (made :func:`json_ready`) to ``path`` through a ``.tmp`` file renamed over
-    it, so a crash leaves the previous version."""
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(json_ready(data), indent=indent, allow_nan=False) + "\n", "utf-8")
-    tmp.replace(path)
+    """Write ``data`` (made :func:`json_ready`) to ``path`` atomically
+    (:func:`watersim._files.atomic_path`), so a crash leaves the previous version."""
+    write_text_atomic(path, json.dumps(json_ready(data), indent=indent, allow_nan=False) + "\n")

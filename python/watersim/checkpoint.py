@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ._core import SceneError
+from ._files import atomic_write
 from ._version import __version__
 from .simulation import Simulation
 
@@ -65,9 +66,8 @@ def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | 
         data[f"gauge{i}_next_time"] = np.asarray(gauge["next_time"])
     path = Path(path)
     # write then rename, so an interrupted save never leaves a truncated checkpoint behind
-    tmp = path.with_name(path.name + ".tmp.npz")
-    np.savez(tmp, **data)
-    tmp.replace(path)
+    with atomic_write(path, "wb") as f:
+        np.savez(f, **data)
     return path
 
 

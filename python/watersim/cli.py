@@ -43,19 +43,23 @@ table), particle snapshots for ParaView; ``watersim plot DIR`` draws a finished 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import json
 import math
+import signal
 import sys
+import threading
 import time
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TextIO
 
 from . import rundir
 from ._core import InstabilityError, SceneError
+from ._files import OutputFileError, check_output_file, named_errors
 from ._jsonio import json_ready as _jsonable
 from ._jsonio import write_json_atomic
 from ._version import __version__
@@ -109,6 +113,40 @@ def _write_json(path: Path, data: dict[str, Any]) -> None:
     write_json_atomic(path, data, indent=2)
 
 
+class TerminatedError(KeyboardInterrupt):
+    """SIGTERM (what ``timeout``, batch schedulers and ``docker stop`` send), raised in the main
+    thread so that a run ends as after Ctrl-C: its summary, its last good state, its ``end``
+    event."""
+
+
+TERMINATED_MESSAGE = "terminated (SIGTERM); the outputs written so far are kept"
+
+
+def _raise_terminated(_signum: int, _frame: Any) -> None:
+    raise TerminatedError(TERMINATED_MESSAGE)
+
+
+@contextlib.contextmanager
+def _signals_deferred() -> Iterator[None]:
+    """Ctrl-C and SIGTERM held back while the block writes a run's record (a second Ctrl-C
+    during the post-run work must not lose the summary); raised when it ends."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = {sig: signal.signal(sig, lambda signum, _frame: caught.append(signum))
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    if signal.SIGTERM in caught:
+        raise TerminatedError(TERMINATED_MESSAGE)
+    if caught:
+        raise KeyboardInterrupt
+
+
 # ------------------------------------------------------------------------------------------------
 # watersim run
 
@@ -125,29 +163,48 @@ def _run_recorded(
     """Run ``sim`` to ``until`` [s] with ``schedule`` (and the ``schedule_options`` of
     :meth:`Simulation.run_schedule`); return ``(status, error record)``.
 
-    A monitor stop (status: its kind), Ctrl-C (``"interrupted"``) or a core error (``"error"``)
-    ends the run with its record; whatever happens, ``before_close`` runs, the log gets its
-    ``end`` event and the outputs are closed, so what was written so far stays readable.
+    A monitor stop (status: its kind), Ctrl-C (``"interrupted"``), SIGTERM (``"terminated"``),
+    a core error or a file that cannot be written (``"error"``) ends the run with its record;
+    whatever happens, ``before_close`` runs (a failure there is the run's error if it had none),
+    the log gets its ``end`` event and the outputs are closed, so what was written so far stays
+    readable.
     """
     status = "ok"
     error: dict[str, Any] | None = None
     try:
         sim.run_schedule(until, schedule, progress=progress, **schedule_options)
-    except InstabilityError as exc:
-        status = stop_status(exc)
-        error = error_record(exc)
-    except KeyboardInterrupt as exc:
-        status = "interrupted"
-        error = error_record(exc)
-    except RuntimeError as exc:
-        status = "error"
-        error = error_record(exc)
-    finally:
+    except (InstabilityError, KeyboardInterrupt, RuntimeError, OSError) as exc:
+        status, error = _stopped(exc)
+    try:
         if before_close is not None:
             before_close()
-        outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
-        outputs.close()
+    except (KeyboardInterrupt, RuntimeError, OSError) as exc:
+        if error is None:
+            status, error = _stopped(exc)
+    finally:
+        with _signals_deferred():
+            try:
+                outputs.log.write("end", status=status, t=sim.time, steps=sim.steps, error=error)
+                outputs.close()
+            except OSError as exc:  # a full disk: the summary still gets its try
+                with contextlib.suppress(OSError):
+                    outputs.close()
+                if error is None:
+                    status, error = _stopped(exc)
     return status, error
+
+
+def _stopped(exc: BaseException) -> tuple[str, dict[str, Any]]:
+    """The status and error record of a run ``exc`` stopped."""
+    if isinstance(exc, InstabilityError):
+        status = stop_status(exc)
+    elif isinstance(exc, TerminatedError):
+        status = "terminated"
+    elif isinstance(exc, KeyboardInterrupt):
+        status = "interrupted"
+    else:
+        status = "error"
+    return status, error_record(exc)
 
 
 def _still_water_checks(sim: Simulation, builder: Tank) -> dict[str, Any]:
@@ -192,6 +249,12 @@ class _Recorder:
         self.fronts: list[float] = []
         self._next_report = 0.0
 
+    def close(self) -> None:
+        """Closes front.csv (an error names it: a full disk fails here)."""
+        if self.file is not None:
+            with named_errors(self.file.name):
+                self.file.close()
+
     def __call__(self, sim: Simulation) -> None:
         if self.writer is not None and self.file is not None:
             pos = sim.fluid_positions()
@@ -199,8 +262,9 @@ class _Recorder:
             h_column = water_column_height(pos, self.dp)
             self.times.append(sim.time)
             self.fronts.append(x_front)
-            self.writer.writerow([repr(sim.time), repr(x_front), repr(h_column)])
-            self.file.flush()  # rows so far survive a crash or an instability
+            with named_errors(self.file.name):
+                self.writer.writerow([repr(sim.time), repr(x_front), repr(h_column)])
+                self.file.flush()  # rows so far survive a crash or an instability
         if self.log is not None:
             self.log.sample(sim, **({"x_front": self.fronts[-1]} if self.fronts else {}))
         if sim.time >= self._next_report:
@@ -241,6 +305,8 @@ def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, floa
     snapshot_every = _positive_option("--snapshot-every", args.snapshot_every)
     if snapshot_every is None:
         snapshot_every = scene.output.snapshot_every
+    if args.save_last_good:  # checked now: the run must not end in a save that cannot be done
+        check_output_file(args.save_last_good)
     if args.progress is None:
         progress = sys.stderr.isatty() and not args.quiet
     else:
@@ -273,7 +339,9 @@ class _Run:
     def start(cls, args: argparse.Namespace, scene: SceneFile, out: Path, sim: Simulation,
               keeper: LastGood, outputs: Callable[[], RunOutputs],
               resumed_at: float | None = None) -> _Run:
-        """Say what runs and what it should cost, then open the outputs (``outputs()``)."""
+        """Say what runs, where and what it should cost, write summary.json with the status
+        ``running`` (replaced when the run ends: a killed run's summary says it never ended),
+        then open the outputs (``outputs()``)."""
         until = float(scene.builder.until)  # type: ignore[arg-type]
         threads = rayon_threads()
         say = _say(args)
@@ -281,16 +349,47 @@ class _Run:
         say(
             f"watersim {__version__}: {scene.name}, {sim.n_particles} particles "
             f"({sim.n_fluid} fluid), dp = {scene.builder.dp:g} m, until {until:g} s{start}, "
-            f"{threads} threads"
+            f"{threads} threads, into {out.resolve()}"
         )
         say(estimate_cost(sim, until, threads).line())
         meter = SpeedMeter(sim, until, say)
+        _write_json(out / "summary.json", {
+            **run_record(RUN_FIELDS, sim, case=scene.name, status="running", until=until,
+                         threads=threads, state_sha256=None),
+            "builder": scene.builder.as_dict(), "scene": sim.scene, "params": sim.params(),
+        })
         return cls(args, scene, out, sim, until, threads, say, keeper, meter, outputs())
+
+    def conclude(self, status: str, error: dict[str, Any] | None, wall: float,
+                 extra: Callable[[], dict[str, Any]] = dict, **parts: Any) -> None:
+        """Writes summary.json, with Ctrl-C and SIGTERM held back: the run record, the outputs,
+        the command's own ``parts`` and ``extra()``, the scene; for a run that stopped, its error
+        and then (a failure to save it cannot lose the summary) its last good state."""
+        path = self.out / "summary.json"
+        with _signals_deferred():
+            summary = self.summary(status, error, wall, **parts)
+            try:
+                summary.update(extra())
+            except Exception as exc:  # noqa: BLE001 - a comparison must not lose the summary
+                summary["extra_error"] = error_record(exc)
+            try:
+                _write_json(path, summary)
+            except OSError as exc:
+                stopped = "" if error is None else f"; the run had stopped: {_stop_message(error)}"
+                raise OutputFileError(f"{exc}{stopped}") from exc
+            if error is None:
+                return
+            try:
+                summary["last_good"] = self.keeper.save_record(
+                    _last_good_path(self.args, self.out))
+            except OSError as exc:
+                summary["last_good"] = {"error": error_record(exc)}
+            _write_json(path, summary)
 
     def summary(self, status: str, error: dict[str, Any] | None, wall: float,
                 **parts: Any) -> dict[str, Any]:
         """summary.json: the run record, the outputs, the command's own ``parts``, the scene;
-        for a run that stopped, its error and its last good state (written here)."""
+        for a run that stopped, its error."""
         summary: dict[str, Any] = {
             **run_record(RUN_FIELDS, self.sim, case=self.scene.name, status=status,
                          until=self.until, wall_s=wall, threads=self.threads),
@@ -302,17 +401,23 @@ class _Run:
         }
         if error is not None:
             summary["error"] = error
-            summary["last_good"] = self.keeper.save_record(_last_good_path(self.args, self.out))
+            summary["last_good"] = None
         return summary
 
     def finish(self, status: str, error: dict[str, Any] | None, wall: float) -> int:
         """The run's last line (and why it stopped, on stderr); its exit code."""
         self.say(f"{status}: {self.sim.steps} steps to t = {self.sim.time:.4g} s in "
-                 f"{wall:.1f} s; wrote {self.out}")
+                 f"{wall:.1f} s; wrote {self.out.resolve()}")
         if error is not None:
             print(f"watersim: run stopped: {_stop_message(error)}", file=sys.stderr)
-            return 130 if status == "interrupted" else 1
+            return STOP_CODES.get(status, 1)
         return 0
+
+
+STOP_CODES = {"interrupted": 128 + signal.SIGINT, "terminated": 128 + signal.SIGTERM,
+              "error": 2}
+"""Exit codes of a stopped run (the shell's for a signal; 2 for a file that cannot be written or
+a core error); a stability monitor's stop exits with 1."""
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -335,8 +440,14 @@ def cmd_run(args: argparse.Namespace) -> int:
         args.sample_every = 0.01
     keeper = _last_good_keeper(args)
     sim = builder.build()  # the core's checks (memory, ...) come before the output folder
-    rundir.claim_folder(out, args.overwrite)
-    out.mkdir(parents=True, exist_ok=True)
+    with rundir.RunFolder(out, args.overwrite):
+        return _run_particles(args, scene, out, sim, keeper, snapshot_every, progress)
+
+
+def _run_particles(args: argparse.Namespace, scene: SceneFile, out: Path, sim: Simulation,
+                   keeper: LastGood, snapshot_every: float | None, progress: bool) -> int:
+    """``watersim run`` of a dam break or a tank into its held folder ``out``."""
+    builder = scene.builder
     run = _Run.start(args, scene, out, sim, keeper, lambda: RunOutputs(out, snapshot_every))
     run.outputs.log.write("start", case=scene.name, n_particles=sim.n_particles, dp=builder.dp,
                           until=run.until, threads=run.threads, version=__version__)
@@ -354,20 +465,25 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     status, error = _run_recorded(
         sim, run.until, [(args.sample_every, sample), *run.outputs.schedule()], progress,
-        run.outputs, front_file.close if front_file is not None else None,
+        run.outputs, recorder.close,
     )
     wall = time.perf_counter() - t_start
 
-    summary = run.summary(status, error, wall)
+    def checks() -> dict[str, Any]:
+        if isinstance(builder, DamBreak):
+            return {"front_csv": "front.csv",
+                    "front_final": recorder.fronts[-1] if recorder.fronts else None,
+                    "martin_moyce": _martin_moyce_summary(builder, recorder.times,
+                                                          recorder.fronts)}
+        if isinstance(builder, Tank) and sim.n_fluid:
+            return {"still_water": _still_water_checks(sim, builder)}
+        return {}
+
+    run.conclude(status, error, wall, checks)
     if is_dambreak:
         assert isinstance(builder, DamBreak)
-        summary["front_csv"] = "front.csv"
-        summary["front_final"] = recorder.fronts[-1] if recorder.fronts else None
-        summary["martin_moyce"] = _martin_moyce_summary(builder, recorder.times, recorder.fronts)
-    elif isinstance(builder, Tank) and sim.n_fluid:
-        summary["still_water"] = _still_water_checks(sim, builder)
-    _write_json(out / "summary.json", summary)
-    _say_martin_moyce(run.say, summary.get("martin_moyce") or {})
+        _say_martin_moyce(run.say, _martin_moyce_summary(builder, recorder.times,
+                                                         recorder.fronts))
     return run.finish(status, error, wall)
 
 
@@ -397,46 +513,72 @@ def _run_flume(
     """``watersim run`` for a wave flume: summary.json, gauges.csv, velocity_NAME.csv,
     analysis.json, log.jsonl, scene.toml and checkpoints/; with ``resumed``, ``watersim
     resume``: the run continues from its checkpoint into the same files."""
-    run, checkpointer, every = _start_flume(args, scene, notes, out, snapshot_every, resumed)
-    sim = run.sim
+    settings = _FlumeSettings.parse(args, scene)
+    # the core's checks (memory, ...) come before the output folder
+    sim = scene.builder.build() if resumed is None else resumed.sim
+    with rundir.RunFolder(out, getattr(args, "overwrite", False), claim=resumed is None):
+        return _run_flume_held(args, scene, notes, out, sim, settings, snapshot_every, progress,
+                               resumed)
+
+
+@dataclass(frozen=True)
+class _FlumeSettings:
+    """A flume run's options, checked before anything is built or written: the last-good
+    keeper, the checkpoint interval and the interval at which gauges.csv is rewritten [s]."""
+
+    keeper: LastGood
+    checkpoint_every: rundir.CheckpointEvery
+    record_every: float
+
+    @classmethod
+    def parse(cls, args: argparse.Namespace, scene: SceneFile) -> _FlumeSettings:
+        builder = scene.builder
+        assert isinstance(builder, FlumeScene)
+        every = args.sample_every
+        if every is None:
+            every = record_every(float(builder.until),  # type: ignore[arg-type]
+                                 float(builder.sample_interval))  # type: ignore[arg-type]
+        return cls(_last_good_keeper(args),
+                   rundir.CheckpointEvery.parse(args.checkpoint_every or DEFAULT_CHECKPOINTS),
+                   every)
+
+
+def _run_flume_held(
+    args: argparse.Namespace, scene: SceneFile, notes: list[str], out: Path, sim: Simulation,
+    settings: _FlumeSettings, snapshot_every: float | None, progress: bool,
+    resumed: rundir.Reopened | None,
+) -> int:
+    """:func:`_run_flume` in its held folder ``out``."""
+    run, checkpointer = _start_flume(args, scene, notes, out, sim, settings, snapshot_every,
+                                     resumed)
+    every = settings.record_every
     assert isinstance(sim, FlumeSimulation)
     t_start = time.perf_counter()
     status, error = _advance_flume(run, sim, checkpointer, every, progress, t_start, resumed)
     wall = time.perf_counter() - t_start
+    run.conclude(status, error, wall, **_flume_records(run, sim, notes, resumed))
     analysis = _flume_analysis(scene, sim, status)
     _write_json(out / "analysis.json", analysis)
-    _write_json(out / "summary.json",
-                run.summary(status, error, wall, **_flume_records(run, sim, notes, resumed)))
     for line in [*headline(scene.name, analysis), *analysis_notes(analysis)]:
         run.say(line)
     return run.finish(status, error, wall)
 
 
 def _start_flume(
-    args: argparse.Namespace, scene: SceneFile, notes: list[str], out: Path,
-    snapshot_every: float | None, resumed: rundir.Reopened | None,
-) -> tuple[_Run, rundir.Checkpointer, float]:
-    """A flume run's set-up: the checks, the simulation (built, or the checkpoint's), the
-    claimed output folder with its scene.toml, the checkpoint schedule and the log's first
-    event; also the sampling interval of gauges.csv."""
+    args: argparse.Namespace, scene: SceneFile, notes: list[str], out: Path, sim: Simulation,
+    settings: _FlumeSettings, snapshot_every: float | None, resumed: rundir.Reopened | None,
+) -> tuple[_Run, rundir.Checkpointer]:
+    """A flume run's set-up in its held folder: the scene.toml of a new run, the checkpoint
+    schedule and the log's first event."""
     builder = scene.builder
     assert isinstance(builder, FlumeScene)
-    keeper = _last_good_keeper(args)
-    checkpoint_every = rundir.CheckpointEvery.parse(args.checkpoint_every or DEFAULT_CHECKPOINTS)
     until = float(builder.until)  # type: ignore[arg-type]
-    every = args.sample_every
-    if every is None:
-        every = record_every(until, float(builder.sample_interval))  # type: ignore[arg-type]
-    # the core's checks (memory, ...) come before the output folder
-    sim = builder.build() if resumed is None else resumed.sim
-    if resumed is None:
-        rundir.claim_folder(out, args.overwrite)
-    out.mkdir(parents=True, exist_ok=True)
     if resumed is None:
         rundir.write_scene(out, scene)
-    checkpointer = rundir.Checkpointer(out, checkpoint_every, poll=every, scene=scene)
+    checkpointer = rundir.Checkpointer(out, settings.checkpoint_every,
+                                       poll=settings.record_every, scene=scene)
     resumed_at = None if resumed is None else resumed.time
-    run = _Run.start(args, scene, out, sim, keeper,
+    run = _Run.start(args, scene, out, sim, settings.keeper,
                      lambda: RunOutputs(out, snapshot_every, resumed_at), resumed_at)
     run.outputs.log.write("start" if resumed is None else "resume", case=scene.name,
                           n_particles=sim.n_particles, dp=builder.dp, until=until,
@@ -444,7 +586,7 @@ def _start_flume(
                           **({} if resumed is None else {"checkpoint": str(resumed.checkpoint),
                                                          "t": resumed.time,
                                                          "steps": resumed.steps}))
-    return run, checkpointer, every
+    return run, checkpointer
 
 
 def _advance_flume(
@@ -502,7 +644,7 @@ def _flume_analysis(scene: SceneFile, sim: FlumeSimulation, status: str) -> dict
     analysis: dict[str, Any]
     try:
         analysis = _case_analysis(scene, sim.analyse())
-    except Exception as exc:  # noqa: BLE001 - the analysis must not lose the run's outputs
+    except (Exception, KeyboardInterrupt) as exc:  # noqa: BLE001 - the run's outputs stay
         analysis = {"error": error_record(exc), "case": scene.name}
     analysis["status"] = status
     return analysis
@@ -551,7 +693,7 @@ def _stop_message(error: dict[str, Any]) -> str:
     """Why a run stopped, never empty (a Ctrl-C carries no message of its own)."""
     if error.get("message"):
         return str(error["message"])
-    if error.get("type") == "KeyboardInterrupt":
+    if error.get("type") in ("KeyboardInterrupt", "TerminatedError"):
         return "interrupted (Ctrl-C); the outputs written so far are kept"
     return str(error.get("type") or "unknown error")
 
@@ -800,14 +942,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``watersim`` command; returns the exit code."""
     args = build_parser().parse_args(argv)
     args.argv = list(sys.argv[2:] if argv is None else argv[1:])  # for reports
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _raise_terminated) if in_main_thread else None
     try:
         return int(args.func(args))
-    except (CliError, SceneError, _validation.ValidateError) as exc:
+    except (CliError, SceneError, _validation.ValidateError, OSError) as exc:
         print(f"watersim: error: {exc}", file=sys.stderr)
         return 2
-    except OSError as exc:
-        print(f"watersim: error: {exc}", file=sys.stderr)
-        return 2
+    except KeyboardInterrupt as exc:
+        print(f"watersim: stopped: {str(exc) or 'interrupted (Ctrl-C)'}", file=sys.stderr)
+        return 128 + (signal.SIGTERM if isinstance(exc, TerminatedError) else signal.SIGINT)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

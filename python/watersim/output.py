@@ -24,6 +24,7 @@ import meshio
 import numpy as np
 import numpy.typing as npt
 
+from ._files import atomic_path, atomic_write, named_errors
 from ._jsonio import json_ready
 from .fields import particle_vorticity
 from .simulation import Simulation
@@ -117,7 +118,8 @@ class SnapshotWriter:
         """Writes one snapshot of ``sim`` at its current time; returns the ``.vtu`` path."""
         name = f"{self.prefix}_{len(self.entries):05d}.vtu"
         path = self.directory / name
-        meshio.write(path, snapshot_mesh(sim), binary=True)
+        with atomic_path(path, suffix=".vtu") as tmp:
+            meshio.write(tmp, snapshot_mesh(sim), file_format="vtu", binary=True)
         self.entries.append((sim.time, name))
         self._write_pvd()
         return path
@@ -133,9 +135,8 @@ class SnapshotWriter:
             ET.SubElement(
                 collection, "DataSet", timestep=repr(float(t)), group="", part="0", file=name
             )
-        tmp = self.pvd_path.with_suffix(".pvd.tmp")
-        ET.ElementTree(root).write(tmp, xml_declaration=True, encoding="utf-8")
-        tmp.replace(self.pvd_path)
+        with atomic_write(self.pvd_path, "wb") as f:
+            ET.ElementTree(root).write(f, xml_declaration=True, encoding="utf-8")
 
 
 class RunLog:
@@ -161,8 +162,9 @@ class RunLog:
         if self._file is None:
             raise ValueError(f"{self.path}: the log is closed")
         record = {"event": event, "wall_s": round(time.perf_counter() - self._start, 6), **fields}
-        self._file.write(json.dumps(json_ready(record), allow_nan=False) + "\n")
-        self._file.flush()
+        with named_errors(self.path):
+            self._file.write(json.dumps(json_ready(record), allow_nan=False) + "\n")
+            self._file.flush()
 
     def sample(self, sim: Simulation, **fields: Any) -> None:
         """A ``sample`` event with the simulation's time, steps and last dt."""
@@ -170,8 +172,9 @@ class RunLog:
 
     def close(self) -> None:
         if self._file is not None:
-            self._file.close()
-            self._file = None
+            file, self._file = self._file, None
+            with named_errors(self.path):
+                file.close()
 
 
 class RunOutputs:

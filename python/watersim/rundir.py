@@ -21,11 +21,13 @@ as an :class:`xarray.Dataset`.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import fcntl
 import json
 import math
+import os
 import re
-import shutil
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -33,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import analysis as an
 from ._core import SceneError
+from ._files import write_text_atomic
 from ._version import __version__
 from .checkpoint import load_checkpoint, read_header, write_state
 from .flume import GAUGE_TYPES, FlumeScene, FlumeSimulation
@@ -45,8 +48,9 @@ if TYPE_CHECKING:
     import xarray
 
 __all__ = [
-    "CHECKPOINTS", "KEEP", "RUN_FILES", "RUN_FOLDERS", "SCENE_FILE", "CheckpointEvery",
-    "Checkpointer", "Reopened", "RunDirError", "analyse", "checkpoints", "claim_folder",
+    "CHECKPOINTS", "KEEP", "LOCK_FILE", "RUN_FILES", "RUN_FOLDERS", "SCENE_FILE",
+    "CheckpointEvery", "Checkpointer", "Reopened", "RunDirError", "RunFolder", "analyse",
+    "checkpoints", "claim_folder",
     "earlier_outputs", "load", "reopen", "write_scene",
 ]
 
@@ -63,8 +67,16 @@ RUN_FILES: tuple[str, ...] = (
 )
 """The files (glob patterns) a run writes into its folder."""
 
-RUN_FOLDERS: tuple[str, ...] = (CHECKPOINTS, "snapshots", "plots")
-"""The folders a run (and ``watersim plot``) writes into its folder."""
+RUN_FOLDERS: dict[str, tuple[str, ...]] = {
+    CHECKPOINTS: ("ckpt_*.npz",),
+    "snapshots": ("particles_*.vtu", "particles.pvd"),
+    "plots": ("*.png",),
+}
+"""The folders a run (and ``watersim plot``) writes into its folder, with the files (glob
+patterns) it writes there."""
+
+LOCK_FILE = ".watersim.lock"
+"""The file a run holds locked in its folder for as long as it writes there (:class:`RunFolder`)."""
 
 
 class RunDirError(SceneError):
@@ -179,23 +191,25 @@ def checkpoints(directory: str | Path) -> list[Path]:
 
 
 def earlier_outputs(directory: str | Path) -> list[Path]:
-    """What earlier runs left in ``directory``: the files of :data:`RUN_FILES` and the folders of
-    :data:`RUN_FOLDERS` found there (nothing else it holds)."""
+    """What earlier runs left in ``directory``: the files of :data:`RUN_FILES` and those of
+    :data:`RUN_FOLDERS` in their folders (nothing else it holds)."""
     folder = Path(directory)
     if not folder.is_dir():
         return []
     found = {p for pattern in RUN_FILES for p in folder.glob(pattern) if p.is_file()}
-    found.update(folder / name for name in RUN_FOLDERS if (folder / name).is_dir())
+    for name, patterns in RUN_FOLDERS.items():
+        found.update(p for pattern in patterns for p in (folder / name).glob(pattern)
+                     if p.is_file())
     return sorted(found)
 
 
-def _earlier_case(folder: Path) -> str:
-    """`` (case NAME, status STATUS)`` of the run whose summary.json is in ``folder``, or ``""``."""
+def _earlier_run(folder: Path) -> dict[str, Any]:
+    """The summary.json of the run that wrote ``folder``, or ``{}``."""
     try:
         summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
-        return f" (case {summary['case']}, status {summary['status']})"
-    except (OSError, ValueError, KeyError, TypeError):
-        return ""
+    except (OSError, ValueError):
+        return {}
+    return summary if isinstance(summary, dict) else {}
 
 
 def claim_folder(directory: str | Path, overwrite: bool) -> None:
@@ -203,8 +217,9 @@ def claim_folder(directory: str | Path, overwrite: bool) -> None:
 
     A folder that holds an earlier run's outputs (:func:`earlier_outputs`) is refused, so that no
     run mixes its files with another's (old snapshots, checkpoints or velocity files of another
-    scene would stay next to the new ones); with ``overwrite`` those outputs are deleted first.
-    Other files in the folder are left alone either way.
+    scene would stay next to the new ones); with ``overwrite`` those outputs are deleted first,
+    and the run's sub-folders when nothing else is left in them. Other files in the folder are
+    left alone either way.
 
     Raises:
         RunDirError: the folder holds an earlier run's outputs and ``overwrite`` is false.
@@ -212,18 +227,96 @@ def claim_folder(directory: str | Path, overwrite: bool) -> None:
     folder = Path(directory)
     found = earlier_outputs(folder)
     if found and not overwrite:
-        names = ", ".join(p.name + ("/" if p.is_dir() else "") for p in found[:6])
+        names = ", ".join(str(p.relative_to(folder)) for p in found[:6])
         more = f" and {len(found) - 6} more" if len(found) > 6 else ""
+        earlier = _earlier_run(folder)
+        case = (f" (case {earlier.get('case')}, status {earlier.get('status')})"
+                if earlier else "")
         hint = (f"; `watersim resume {folder}` continues it"
-                if checkpoints(folder) and not (folder / "summary.json").is_file() else "")
+                if checkpoints(folder) and earlier.get("status", "running") == "running" else "")
         raise RunDirError(
-            f"{folder}: holds the outputs of an earlier run{_earlier_case(folder)}: {names}"
+            f"{folder}: holds the outputs of an earlier run{case}: {names}"
             f"{more}; --overwrite deletes them first, --out DIR writes elsewhere{hint}")
     for path in found:
-        if path.is_dir():
-            shutil.rmtree(path)
-        else:
-            path.unlink()
+        path.unlink()
+    for name in RUN_FOLDERS:
+        with contextlib.suppress(OSError):  # missing, or holding the user's own files
+            (folder / name).rmdir()
+
+
+class RunFolder:
+    """A run's hold on its output folder, for as long as the run writes there (a context
+    manager): the folder is created, :data:`LOCK_FILE` in it is locked (``flock``: the kernel
+    releases it when the process ends, however it ends) and, for a new run, the folder is
+    claimed (:func:`claim_folder`). The lock file is removed when the run lets go.
+
+    Args:
+        directory: the run's folder.
+        overwrite: delete an earlier run's outputs (a new run).
+        claim: refuse or clear an earlier run's outputs; False for a run continuing its own
+            folder (``watersim resume``), which must exist.
+
+    Raises:
+        RunDirError: another process holds the folder, or :func:`claim_folder` refuses it.
+    """
+
+    def __init__(self, directory: str | Path, overwrite: bool = False, claim: bool = True) -> None:
+        self.directory = Path(directory)
+        self.overwrite = overwrite
+        self.claim = claim
+        self._fd: int | None = None
+
+    @property
+    def lock_path(self) -> Path:
+        return self.directory / LOCK_FILE
+
+    def __enter__(self) -> RunFolder:
+        if self.claim:
+            self.directory.mkdir(parents=True, exist_ok=True)
+        elif not self.directory.is_dir():
+            raise RunDirError(f"{self.directory}: no such folder")
+        self._fd = self._lock()
+        try:
+            if self.claim:
+                claim_folder(self.directory, self.overwrite)
+        except BaseException:
+            self.release()
+            raise
+        return self
+
+    def _lock(self) -> int:
+        while True:
+            fd = os.open(self.lock_path, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                holder = os.read(fd, 64).decode("ascii", "replace").strip() or "?"
+                os.close(fd)
+                raise RunDirError(
+                    f"{self.directory}: another run (process {holder}) is writing into this "
+                    "folder; wait for it to end or give --out DIR") from None
+            try:
+                same = os.fstat(fd).st_ino == os.stat(self.lock_path).st_ino
+            except FileNotFoundError:
+                same = False
+            if same:  # not a lock file its last holder removed between our open and flock
+                os.ftruncate(fd, 0)
+                os.write(fd, f"{os.getpid()}\n".encode("ascii"))
+                return fd
+            os.close(fd)
+
+    def release(self) -> None:
+        """Lets go of the folder: removes the lock file (while still holding it, so that no
+        other run locks a file about to disappear) and closes it."""
+        if self._fd is None:
+            return
+        with contextlib.suppress(OSError):
+            self.lock_path.unlink()
+        os.close(self._fd)
+        self._fd = None
+
+    def __exit__(self, *exc_info: object) -> None:
+        self.release()
 
 
 def write_scene(directory: str | Path, scene: SceneFile) -> Path:
@@ -231,9 +324,7 @@ def write_scene(directory: str | Path, scene: SceneFile) -> Path:
     path = Path(directory) / SCENE_FILE
     header = (f"The scene of this run, written by watersim {__version__}; "
               "watersim resume and watersim analyse rebuild the run from it.")
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(scene_dumps(scene.builder, scene.output, header=header), encoding="utf-8")
-    tmp.replace(path)
+    write_text_atomic(path, scene_dumps(scene.builder, scene.output, header=header))
     return path
 
 

@@ -44,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from . import numerics as nm
+from ._files import write_text_atomic
 from ._jsonio import write_json_atomic
 from .errors import CliError
 from .runrecord import STRESS_FIELDS, instability_fields, measure, run_record
@@ -838,7 +839,7 @@ def write_report(
                 lines += [f"- {name}: {n}" for name, n in notes]
         lines.append("")
     readme = out / "README.md"
-    readme.write_text("\n".join(lines).rstrip() + "\n", "utf-8")
+    write_text_atomic(readme, "\n".join(lines).rstrip() + "\n")
     return readme
 
 

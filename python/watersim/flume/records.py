@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
+from .._files import atomic_write
 from .gauges import DRY_KERNEL_SUM, GAUGE_TYPES, Series, VelocityRecord, csv_column, point_labels
 
 if TYPE_CHECKING:
@@ -179,15 +180,13 @@ class FlumeGauges:
 
 def _write_table(path: Path, header: list[str],
                  columns: list[npt.NDArray[np.float64]]) -> Path:
-    """Write a CSV table of float ``columns`` (the first one's length) under ``header``, to a
-    temporary file first and renamed, so a reader never sees half a file."""
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", newline="", encoding="utf-8") as f:
+    """Write a CSV table of float ``columns`` (the first one's length) under ``header``
+    atomically (:func:`watersim._files.atomic_write`), so a reader never sees half a file."""
+    with atomic_write(path, "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
         writer.writerow(header)
         for i in range(len(columns[0])):
             writer.writerow([repr(float(c[i])) for c in columns])
-    tmp.replace(path)
     return path
 
 

@@ -15,6 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from .._files import write_text_atomic
+
 __all__ = [
     "ConvergenceOrder",
     "cheapest_meeting",
@@ -277,7 +279,7 @@ def write_report(
         body += section
     lines += summary + [""] + body
     readme = out / "README.md"
-    readme.write_text("\n".join(lines) + "\n", "utf-8")
+    write_text_atomic(readme, "\n".join(lines) + "\n")
     return readme
 
 
