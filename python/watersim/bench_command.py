@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import statistics
 import time
 from collections.abc import Callable
@@ -132,7 +133,17 @@ def _thread_counts(text: str) -> tuple[int, int]:
             f"--compare-threads: two thread counts A,B, e.g. 1,2; got {text!r}") from None
     if a < 1 or b < 1 or a == b:
         raise CliError(f"--compare-threads: two different counts of at least 1, got {text!r}")
+    most = max_threads()
+    if max(a, b) > most:
+        raise CliError(f"--compare-threads: at most {most} threads (8 per CPU of this machine), "
+                       f"got {text!r}")
     return a, b
+
+
+def max_threads() -> int:
+    """The most threads ``--compare-threads`` starts: 8 per CPU, at least 64 (oversubscription
+    is worth measuring; tens of thousands of threads only exhaust the machine)."""
+    return max(64, 8 * (os.cpu_count() or 1))
 
 
 def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int,

@@ -16,6 +16,7 @@ has to be taken before.
 from __future__ import annotations
 
 import json
+import math
 import zipfile
 from collections.abc import Mapping
 from pathlib import Path
@@ -28,7 +29,7 @@ from ._files import atomic_write
 from ._version import __version__
 from .simulation import Simulation
 
-__all__ = ["LastGood", "load_checkpoint", "read_header", "save_checkpoint", "write_state"]
+__all__ = ["LastGood", "check_state", "load_checkpoint", "read_header", "save_checkpoint", "write_state"]
 
 _ARRAYS = (
     "positions", "velocities", "densities", "ids", "kinds", "velocities_prev", "densities_prev",
@@ -103,31 +104,86 @@ def load_checkpoint(path: str | Path, sim: Simulation | None = None) -> Simulati
     scene), else into a new simulation built from the scene stored in the checkpoint.
 
     Raises:
-        SceneError: the file is not a WaterSim checkpoint, or belongs to another scene.
+        SceneError: the file is not a WaterSim checkpoint (missing, damaged, or another kind of
+            file), its state is inconsistent (:func:`check_state`), or it belongs to another
+            scene.
     """
-    with np.load(Path(path), allow_pickle=False) as f:
-        if "scene_json" not in f:
-            raise SceneError(f"checkpoint: {path} is not a WaterSim checkpoint (no scene_json)")
-        if sim is None:
-            sim = Simulation(str(f["scene_json"]))
-        state: dict[str, Any] = {key: np.asarray(f[key]) for key in _ARRAYS}
-        state["time"] = float(f["time"])
-        state["steps"] = int(f["steps"])
-        state["dt"] = float(f["dt"])
-        state["n_excluded"] = int(f["n_excluded"])
-        state["energy0"] = tuple(float(v) for v in f["energy0"])
-        if "paddle_correction" in f:
-            state["paddle_correction"] = tuple(float(v) for v in f["paddle_correction"])
-        state["gauges"] = [
-            {
-                "t": np.asarray(f[f"gauge{i}_t"]),
-                "values": np.asarray(f[f"gauge{i}_values"]),
-                "next_time": float(f[f"gauge{i}_next_time"]),
-            }
-            for i in range(int(f["n_gauges"]))
-        ]
+    try:
+        with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as f:
+            if "scene_json" not in f:
+                raise SceneError(f"checkpoint {path}: not a WaterSim checkpoint (no scene_json)")
+            if sim is None:
+                try:
+                    sim = Simulation(str(f["scene_json"]))
+                except SceneError as exc:
+                    raise SceneError(f"checkpoint {path}: its scene is refused: {exc}") from exc
+            state = _read_state(f)
+    except SceneError:
+        raise
+    except (OSError, ValueError, KeyError, TypeError, IndexError, zipfile.BadZipFile,
+            EOFError) as exc:
+        raise SceneError(f"checkpoint {path}: unreadable ({type(exc).__name__}: {exc})") from exc
+    check_state(state, sim, f"checkpoint {path}")
     sim.core.restore(state)
     return sim
+
+
+def _read_state(f: Any) -> dict[str, Any]:
+    """The state stored in an opened checkpoint archive ``f``, as ``core.restore`` takes it."""
+    state: dict[str, Any] = {key: np.asarray(f[key]) for key in _ARRAYS}
+    state["time"] = float(f["time"])
+    state["steps"] = int(f["steps"])
+    state["dt"] = float(f["dt"])
+    state["n_excluded"] = int(f["n_excluded"])
+    state["energy0"] = tuple(float(v) for v in f["energy0"])
+    if "paddle_correction" in f:
+        state["paddle_correction"] = tuple(float(v) for v in f["paddle_correction"])
+    state["gauges"] = [
+        {
+            "t": np.asarray(f[f"gauge{i}_t"]),
+            "values": np.asarray(f[f"gauge{i}_values"]),
+            "next_time": float(f[f"gauge{i}_next_time"]),
+        }
+        for i in range(int(f["n_gauges"]))
+    ]
+    return state
+
+
+KINDS = (0, 1, 2, 3)
+"""Particle kinds: fluid, fixed wall, moving wall, excluded."""
+
+
+def check_state(state: Mapping[str, Any], sim: Simulation, source: str = "checkpoint") -> None:
+    """Refuses a state that ``sim`` cannot continue from (the core checks the arrays' lengths):
+    duplicate ids, unknown kinds, a time, step or baseline energy that is not finite, more
+    excluded particles than particles, gauge records with fewer values than times.
+
+    Raises:
+        SceneError: ``"SOURCE: inconsistent state: ..."`` naming what is wrong.
+    """
+    def refuse(reason: str) -> None:
+        raise SceneError(f"{source}: inconsistent state: {reason}")
+
+    n = sim.n_particles
+    ids = np.asarray(state["ids"]).reshape(-1)
+    kinds = np.asarray(state["kinds"]).reshape(-1)
+    if np.unique(ids).size != ids.size:
+        refuse("duplicate particle ids")
+    if not np.isin(kinds, KINDS).all():
+        refuse(f"unknown particle kinds {sorted(set(kinds.tolist()) - set(KINDS))[:5]}")
+    for key in ("time", "dt"):
+        if not math.isfinite(state[key]) or state[key] < 0.0:
+            refuse(f"{key} = {state[key]!r}, not a finite non-negative number")
+    if not 0 <= int(state["n_excluded"]) <= n:
+        refuse(f"n_excluded = {state['n_excluded']}, above the {n} particles")
+    if not all(math.isfinite(v) for v in state["energy0"]):
+        refuse(f"energy0 = {tuple(state['energy0'])!r}, not finite")
+    for i, gauge in enumerate(state["gauges"]):
+        times, values = np.asarray(gauge["t"]).size, np.asarray(gauge["values"]).size
+        if values < times or (times and values % times):
+            refuse(f"gauge {i} has {values} values for {times} times")
+        if math.isnan(gauge["next_time"]) or gauge["next_time"] == -math.inf:
+            refuse(f"gauge {i}: next_time = {gauge['next_time']!r}")
 
 
 class LastGood:

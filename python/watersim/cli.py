@@ -295,10 +295,37 @@ def default_folder(scene: SceneFile) -> Path:
     return Path("runs") / (scene.name if scene.path is not None else f"{scene.name}-builtin")
 
 
+def _output_folder(given: str | None, scene: SceneFile) -> Path:
+    """A run's folder: ``--out`` as given; else the scene file's ``[output] directory``, which
+    must stay under the working directory (a shared scene file must not write, or clear, a
+    folder elsewhere); else :func:`default_folder`.
+
+    Raises:
+        CliError: a NUL byte in the path, or a scene file's directory outside the working
+            directory.
+    """
+    if given is not None:
+        out = Path(given)
+        source = "--out"
+    elif scene.output.directory:
+        out = Path(scene.output.directory)
+        source = "[output] directory"
+        if "\0" not in str(out):
+            here = Path.cwd().resolve()
+            if out.is_absolute() or not (here / out).resolve().is_relative_to(here):
+                raise CliError(f"{source}: {str(out)!r} is outside the working directory "
+                               f"{here}; a scene file writes under it, --out DIR writes elsewhere")
+    else:
+        return default_folder(scene)
+    if "\0" in str(out):
+        raise CliError(f"{source}: {str(out)!r}: a folder name cannot hold a NUL byte")
+    return out
+
+
 def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, float | None, bool]:
     """Output folder, snapshot interval and progress bar of a run: the command line first,
     then the scene file's [output] table, then the defaults."""
-    out = Path(args.out or scene.output.directory or default_folder(scene))
+    out = _output_folder(args.out, scene)
     if args.sample_every is None:
         args.sample_every = scene.output.sample_every
     _positive_option("--sample-every", args.sample_every)

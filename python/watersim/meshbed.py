@@ -65,7 +65,8 @@ def read_triangle_mesh(path: str | os.PathLike[str], field: str = "path"
             # RuntimeWarning) on an ASCII file before it falls back to reading it as text
             warnings.simplefilter("ignore", RuntimeWarning)
             mesh = meshio.read(p, file_format=fmt)
-    except Exception as exc:  # meshio raises ReadError, ValueError, IndexError... on bad files
+    except (Exception, SystemExit) as exc:  # meshio raises ReadError, ValueError, IndexError...
+        # on bad files, and calls sys.exit on some malformed .vtu ones
         reason = str(exc) or type(exc).__name__
         raise SceneError(f"{field}: cannot read {str(p)!r} as a triangle mesh: {reason}") from None
     kinds = [block.type for block in mesh.cells]

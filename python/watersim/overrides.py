@@ -43,6 +43,11 @@ T = TypeVar("T")
 NONE_WORDS: tuple[str, ...] = ("none", "null", "auto")
 """Values that leave an optional field unset (it then takes its default)."""
 
+MAX_KEY_PARTS = 16
+"""The most names a ``--set`` key joins by dots (the deepest real key has four)."""
+MAX_KEY_LENGTH = 256
+"""The longest ``--set`` key [characters]."""
+
 _TOKEN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[\d+\])*)$")
 
 Token = str | int
@@ -101,6 +106,10 @@ class Override:
         Raises:
             OverrideError: a key that is not names joined by dots with ``[i]`` indices.
         """
+        if len(self.key) > MAX_KEY_LENGTH or self.key.count(".") >= MAX_KEY_PARTS:
+            raise OverrideError(f"--set: key too long ({len(self.key)} characters, "
+                                f"{self.key.count('.') + 1} parts; at most {MAX_KEY_LENGTH} and "
+                                f"{MAX_KEY_PARTS}): {self.key[:60]!r}...")
         out: list[Token] = []
         for part in self.key.split("."):
             m = _TOKEN.match(part.strip())
@@ -146,7 +155,7 @@ class Override:
         else the text itself as a string (``--set wave.type=irregular``)."""
         try:
             return tomllib.loads(f"v = {self.text}")["v"]
-        except tomllib.TOMLDecodeError:
+        except (ValueError, RecursionError):  # not TOML, a 5000-digit integer, deep nesting
             return self.text.strip()
 
     def clears(self, hint: Any) -> bool:

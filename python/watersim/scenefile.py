@@ -32,6 +32,7 @@ import collections.abc
 import dataclasses
 import inspect
 import re
+import stat
 import sys
 import types
 import typing
@@ -402,11 +403,25 @@ def loads(text: str, settings: Sequence[str] = (), source: str = "scene", name: 
     relative mesh file paths are from the folder ``base`` (default: the current one)."""
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneFileError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise SceneFileError(f"{source}: not a scene: arrays or tables nested too deeply") from None
+    except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
+        raise SceneFileError(f"{source}: not valid TOML: {_short(str(exc))}") from None
     if settings:
         apply_settings(data, settings, source)
-    return scene_from_dict(data, source, name, base)
+    try:
+        return scene_from_dict(data, source, name, base)
+    except RecursionError:
+        raise SceneFileError(f"{source}: not a scene: values nested too deeply") from None
+
+
+def _short(text: str, limit: int = 200) -> str:
+    """``text`` cut to ``limit`` characters (a message quoting a hostile value stays a line)."""
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+MAX_SCENE_FILE_BYTES = 16 * 2**20
+"""The largest scene file read (a scene is a few kilobytes; meshes are files of their own)."""
 
 
 def load(path: str | Path, settings: Sequence[str] = ()) -> SceneFile:
@@ -416,7 +431,16 @@ def load(path: str | Path, settings: Sequence[str] = ()) -> SceneFile:
         SceneFileError: the file is missing, not TOML, or refused (key path and reason).
     """
     p = Path(path)
+    if "\0" in str(p):
+        raise SceneFileError(f"{str(p)!r}: a file name cannot hold a NUL byte")
     try:
+        mode = p.stat().st_mode  # a link is followed: a link to /dev/zero is a device
+        if not stat.S_ISREG(mode):
+            # a FIFO would block and a device never end: read regular files only
+            raise SceneFileError(f"{p}: not a regular file (a scene file is a TOML file)")
+        if p.stat().st_size > MAX_SCENE_FILE_BYTES:
+            raise SceneFileError(f"{p}: {p.stat().st_size} bytes; a scene file is at most "
+                                 f"{MAX_SCENE_FILE_BYTES} bytes")
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise SceneFileError(f"{p}: no such scene file") from None

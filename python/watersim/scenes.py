@@ -24,6 +24,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -57,6 +58,11 @@ def _at_most(name: str, value: Any, limit: float, why: str) -> None:
 
 
 # ------------------------------------------------------------------------------------------------
+
+
+MAX_USUAL_COEFSOUND = 200.0
+"""Above this ``coefsound`` a builder warns: the sound speed sets the time step (CFL), and such
+a stiff fluid only multiplies the steps (the stable region measured goes to 80)."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -181,6 +187,11 @@ class SceneBuilder:
         for name in ("coefsound", "gamma", "cfl", "rho0", "gravity"):
             if getattr(self, name) is not None:
                 _positive(name, getattr(self, name))
+        if self.coefsound is not None and self.coefsound > MAX_USUAL_COEFSOUND:
+            warnings.warn(
+                f"coefsound = {self.coefsound:.3g}: far above the 10-80 of docs/stability.md; "
+                f"the time step shrinks in proportion, {self.coefsound / 10:.3g} times as many "
+                "steps as at coefsound 10", stacklevel=4)
         _at_most("cfl", self.cfl, 1.0, "a Courant number")
         if self.force_precision == "f32" and isinstance(self.viscosity, nm.LaminarSps):
             raise SceneError(

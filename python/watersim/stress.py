@@ -942,7 +942,7 @@ def machine_info() -> dict[str, Any]:
 
 def cmd_stress(args: Any) -> int:
     """``watersim stress``: run the matrix, write the JSON and the report; exit 0 unless a run
-    ended in ``error`` (unstable runs are results, not errors)."""
+    ended in ``error`` or ``timeout`` (unstable runs are results, not errors)."""
     from ._version import __version__
 
     specs = quick_matrix() if args.quick else full_matrix()
@@ -984,7 +984,7 @@ def cmd_stress(args: Any) -> int:
                   f"max|drho|={_fmt(r['max_density_error'])}  wall {_fmt(r['wall_s'], '.1f')} s")
         for cs, row in stable_region(records).items():
             print(f"coefsound {cs:g}: stable for CFL <= {row['stable_up_to']}")
-    return 1 if any(r["status"] == "error" for r in records) else 0
+    return 1 if any(r["status"] in ("error", "timeout") for r in records) else 0
 
 
 def add_parser(sub: Any) -> None:

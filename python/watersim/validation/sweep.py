@@ -324,8 +324,9 @@ def cmd_validate(args: argparse.Namespace) -> int:
             records = json.loads(Path(args.from_json).read_text("utf-8"))
         except (OSError, json.JSONDecodeError) as exc:
             raise ValidateError(f"--from-json: cannot read {args.from_json}: {exc}") from None
-        if not isinstance(records, list):
-            raise ValidateError(f"--from-json: {args.from_json} does not hold a list of runs")
+        if not isinstance(records, list) or not all(isinstance(r, dict) for r in records):
+            raise ValidateError(f"--from-json: {args.from_json} does not hold a list of runs "
+                                "(JSON objects, as --json writes them)")
         if args.cases:
             plan(args.cases, None, False)  # checks the names
             records = [r for r in records if r.get("case") in args.cases]
