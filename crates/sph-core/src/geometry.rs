@@ -9,6 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::math::{Dim, Real, Vector};
+use crate::probes::NO_BODY;
 use crate::scene::{Obstacle, Scene};
 
 /// Particles sampled from a scene.
@@ -65,14 +66,9 @@ fn profile_signed_distance(x: &[Real], z: &[Real], line: &parry2d_f64::shape::Po
     }
 }
 
-/// Samples the scene's walls and fluid. Errors when the geometry leaves no fluid.
-pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
-    let dim = D::DIM;
-    let dp = scene.dp;
-    let layers = scene.layers() as i64;
-    let tank_min = D::V::from_slice(&scene.tank.min);
-    let tank_max = D::V::from_slice(&scene.tank.max);
-    let solids: Vec<Solid<D>> = scene
+/// The scene's obstacles as solids with a signed distance, in the scene's order.
+fn solids<D: Dim>(scene: &Scene) -> Result<Vec<Solid<D>>> {
+    scene
         .obstacles
         .iter()
         .enumerate()
@@ -92,7 +88,40 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
                 }
             })
         })
-        .collect::<Result<_>>()?;
+        .collect()
+}
+
+/// Which obstacle each of the fixed wall particles at `walls` was sampled from: the index of the
+/// first obstacle whose shell (`layers` thick inside its surface) holds it, as [`sample`]
+/// decides, or [`NO_BODY`] for the tank's walls (outside the tank's inner box) and the rest.
+pub fn wall_bodies<D: Dim>(scene: &Scene, walls: &[D::V]) -> Result<Vec<u16>> {
+    let solids = solids::<D>(scene)?;
+    let thickness = scene.layers() as Real * scene.dp;
+    let (tank_min, tank_max) = (D::V::from_slice(&scene.tank.min), D::V::from_slice(&scene.tank.max));
+    Ok(walls
+        .iter()
+        .map(|&p| {
+            let in_tank = (0..D::DIM).all(|k| p.get(k) >= tank_min.get(k) && p.get(k) <= tank_max.get(k));
+            let shell = |s: &Solid<D>| {
+                let d = s.signed_distance(p);
+                d < 0.0 && d >= -thickness
+            };
+            match solids.iter().position(shell) {
+                Some(i) if in_tank && i < NO_BODY as usize => i as u16,
+                _ => NO_BODY,
+            }
+        })
+        .collect())
+}
+
+/// Samples the scene's walls and fluid. Errors when the geometry leaves no fluid.
+pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
+    let dim = D::DIM;
+    let dp = scene.dp;
+    let layers = scene.layers() as i64;
+    let tank_min = D::V::from_slice(&scene.tank.min);
+    let tank_max = D::V::from_slice(&scene.tank.max);
+    let solids = solids::<D>(scene)?;
     let fluid_boxes: Vec<(D::V, D::V)> =
         scene.fluid.iter().map(|b| (D::V::from_slice(&b.min), D::V::from_slice(&b.max))).collect();
 

@@ -4,6 +4,8 @@
 //! t = 0), and records the actual time. Interpolation is Shepard-normalised SPH over fluid
 //! particles: `f(x) = sum_b V_b W(x - x_b) f_b / sum_b V_b W(x - x_b)`, `V_b = m / rho_b`.
 
+mod body_force;
+
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -15,6 +17,8 @@ use crate::particles::Particles;
 use crate::physics::eos::pressure;
 use crate::physics::Constants;
 use crate::scene::BoxSpec;
+
+pub use body_force::{body_force, NO_BODY};
 
 /// How a free-surface gauge finds the surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -64,6 +68,18 @@ pub enum GaugeSpec {
     /// measures pressure at a point; records per point the pressure [Pa] and the kernel volume
     /// sum (below 0.5 the point is out of the water).
     Pressure { name: String, points: Vec<Vec<Real>>, interval: Real },
+    /// Force and moment of the fluid on one obstacle (`obstacle`: its index in the scene's
+    /// `obstacles`): the sum over the obstacle's wall particles of the pair forces of their
+    /// fluid neighbours (see [`body_force`]), and its moment about `point`. Records the force
+    /// [N in 3D, N/m in 2D] and the moment [N m, N m/m]: in 2D about the y axis,
+    /// `M_y = r_z F_x - r_x F_z` (`r` from `point` to the wall particle).
+    Force {
+        name: String,
+        #[serde(default)]
+        obstacle: Option<usize>,
+        point: Vec<Real>,
+        interval: Real,
+    },
 }
 
 impl GaugeSpec {
@@ -73,7 +89,8 @@ impl GaugeSpec {
             | GaugeSpec::Velocity { name, .. }
             | GaugeSpec::Window { name, .. }
             | GaugeSpec::Runup { name, .. }
-            | GaugeSpec::Pressure { name, .. } => name,
+            | GaugeSpec::Pressure { name, .. }
+            | GaugeSpec::Force { name, .. } => name,
         }
     }
 
@@ -83,7 +100,8 @@ impl GaugeSpec {
             | GaugeSpec::Velocity { interval, .. }
             | GaugeSpec::Window { interval, .. }
             | GaugeSpec::Runup { interval, .. }
-            | GaugeSpec::Pressure { interval, .. } => *interval,
+            | GaugeSpec::Pressure { interval, .. }
+            | GaugeSpec::Force { interval, .. } => *interval,
         }
     }
 
@@ -94,13 +112,15 @@ impl GaugeSpec {
             GaugeSpec::Window { .. } => "window",
             GaugeSpec::Runup { .. } => "runup",
             GaugeSpec::Pressure { .. } => "pressure",
+            GaugeSpec::Force { .. } => "force",
         }
     }
 
     /// The quantities the gauge records, in the order of a sample's values (each point's
     /// columns in turn): elevation and run-up, z [m] (NaN when no water is found); velocity
     /// probe and window, per point the velocity [m/s] then the kernel volume sum; pressure, per
-    /// point the pressure [Pa] then the kernel volume sum.
+    /// point the pressure [Pa] then the kernel volume sum; force, the force then the moment
+    /// (one component in 2D, three in 3D).
     pub fn columns(&self, dim: usize) -> Vec<Column> {
         match self {
             GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => vec![Column { name: "z", size: 1 }],
@@ -109,6 +129,9 @@ impl GaugeSpec {
             }
             GaugeSpec::Pressure { .. } => {
                 vec![Column { name: "pressure", size: 1 }, Column { name: "kernel_sum", size: 1 }]
+            }
+            GaugeSpec::Force { .. } => {
+                vec![Column { name: "force", size: dim }, Column { name: "moment", size: if dim == 2 { 1 } else { 3 } }]
             }
         }
     }
@@ -144,8 +167,9 @@ impl GaugeSpec {
         }
     }
 
-    /// Checks the gauge against the scene's dimension and the domain `[lo, hi]`.
-    pub fn validate(&self, field: &str, dim: usize, lo: &[Real], hi: &[Real]) -> Result<()> {
+    /// Checks the gauge against the scene's dimension, the domain `[lo, hi]` and the number of
+    /// the scene's obstacles.
+    pub fn validate(&self, field: &str, dim: usize, lo: &[Real], hi: &[Real], n_obstacles: usize) -> Result<()> {
         let interval = self.interval();
         if !interval.is_finite() || interval <= 0.0 {
             return Err(Error::invalid(format!("{field}.interval"), format!("must be > 0, got {interval}")));
@@ -193,6 +217,22 @@ impl GaugeSpec {
                 check_point(format!("{field}.end"), end, false)?;
                 if start == end {
                     return Err(Error::invalid(format!("{field}.end"), "must differ from start"));
+                }
+            }
+            GaugeSpec::Force { obstacle, point, .. } => {
+                let f = format!("{field}.obstacle");
+                match obstacle {
+                    None => return Err(Error::invalid(f, "a force gauge needs the index of the obstacle it measures")),
+                    Some(i) if *i >= n_obstacles => {
+                        return Err(Error::invalid(f, format!("no obstacle {i}: the scene has {n_obstacles} obstacles")))
+                    }
+                    Some(i) if *i >= NO_BODY as usize => {
+                        return Err(Error::invalid(f, format!("force gauges measure the first {NO_BODY} obstacles, got {i}")))
+                    }
+                    Some(_) => {}
+                }
+                if point.len() != dim || point.iter().any(|x| !x.is_finite()) {
+                    return Err(Error::invalid(format!("{field}.point"), format!("must be {dim} finite numbers, got {point:?}")));
                 }
             }
         }
@@ -268,14 +308,18 @@ impl NanIfInfinite for Real {
 const PARTICLE_GAUGE_HALF_WIDTH: Real = 0.75;
 
 /// What the gauges read, and nothing they could change: the particles, their cell grid (sorted
-/// at the last force evaluation), the kernel, the run's constants and the tank. A motion law
-/// can read a gauge through it before the paddle moves (active absorption).
+/// at the last force evaluation), the kernel, the run's constants, the tank and the obstacle
+/// each fixed wall particle belongs to. A motion law can read a gauge through it before the
+/// paddle moves (active absorption).
 pub struct ProbeView<'a, D: Dim, K: Kernel> {
     pub p: &'a Particles<D>,
     pub grid: &'a CellGrid<D>,
     pub kernel: &'a K,
     pub c: &'a Constants,
     pub tank: &'a BoxSpec,
+    /// Per fixed wall slot, the index of the obstacle it was sampled from ([`NO_BODY`] for the
+    /// tank's walls); empty in a scene without force gauges.
+    pub wall_body: &'a [u16],
 }
 
 impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
@@ -439,6 +483,12 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                 GaugeSpec::Pressure { .. } => {
                     let values = self.at_points(&rec.points, |(w, _, pr, _)| vec![pr, w]);
                     rec.values.extend_from_slice(&values);
+                }
+                GaugeSpec::Force { obstacle, point, .. } => {
+                    let body = obstacle.map_or(NO_BODY, |i| i as u16);
+                    let (force, moment) = body_force(self, body, D::V::from_slice(point));
+                    rec.values.extend_from_slice(force.as_slice());
+                    rec.values.extend_from_slice(&moment[..if D::DIM == 2 { 1 } else { 3 }]);
                 }
             }
             rec.t.push(t);

@@ -346,7 +346,7 @@ impl Scene {
         let mut names = std::collections::HashSet::new();
         for (i, g) in self.gauges.iter().enumerate() {
             let f = format!("gauges[{i}]");
-            g.validate(&f, dim, &self.tank.min, &self.tank.max)?;
+            g.validate(&f, dim, &self.tank.min, &self.tank.max, self.obstacles.len())?;
             if !names.insert(g.name().to_string()) {
                 return Err(Error::invalid(format!("{f}.name"), format!("duplicate gauge name {:?}", g.name())));
             }

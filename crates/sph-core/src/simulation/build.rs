@@ -12,7 +12,7 @@ use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::particles::{Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING, PERMUTE_BLOCK};
 use crate::physics::eos::density_at_pressure;
 use crate::physics::{Constants, VISC_LAMINAR_SPS};
-use crate::probes::GaugeRecord;
+use crate::probes::{GaugeRecord, GaugeSpec};
 use crate::scene::{Integrator, Scene};
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
@@ -111,6 +111,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             absorber: None,
             walls,
             gauges: Vec::new(),
+            wall_body: Vec::new(),
             domain: (lo, hi),
             n_excluded: 0,
             energy0: (0.0, 0.0),
@@ -129,6 +130,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
         solver.grid.forget_slot_cells(GROUP_FIXED);
+        if solver.scene.gauges.iter().any(|g| matches!(g, GaugeSpec::Force { .. })) {
+            solver.wall_body = geometry::wall_bodies::<D>(&solver.scene, &solver.p.pos[..n_fixed])?;
+        }
         solver.sort_group(GROUP_MOVING);
         solver.sort_group(GROUP_FLUID);
         // a group without particles needs no cell starts (the groups' sizes never change)

@@ -187,6 +187,9 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     /// The wall model, chosen by the scene's `boundary`.
     walls: Box<dyn WallModel<D, K>>,
     gauges: Vec<GaugeRecord>,
+    /// Per fixed wall slot, the obstacle it was sampled from (see [`ProbeView::wall_body`]);
+    /// empty without force gauges. The fixed walls are sorted once, at the build.
+    wall_body: Vec<u16>,
     /// Box outside which fluid particles are excluded.
     domain: (D::V, D::V),
     n_excluded: usize,
@@ -282,7 +285,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
 
     /// The gauges' view of the present state.
     fn probes(&self) -> ProbeView<'_, D, K> {
-        ProbeView { p: &self.p, grid: &self.grid, kernel: &self.kernel, c: &self.c, tank: &self.scene.tank }
+        ProbeView { p: &self.p, grid: &self.grid, kernel: &self.kernel, c: &self.c, tank: &self.scene.tank, wall_body: &self.wall_body }
     }
 
     /// Kinetic plus potential energy of the fluid still in the domain [J].
@@ -411,6 +414,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             + self.tau.capacity() * size_of::<D::Sym>()
             + self.shift.as_ref().map_or(0, |s| s.grad.capacity() * v + s.div.capacity() * r)
             + self.moving_ref.capacity() * v
+            + self.wall_body.capacity() * size_of::<u16>()
             + self.walls.memory_bytes()
             + self.grid.memory_bytes()
             + scratch
