@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import cmath
 import math
 from types import SimpleNamespace
 
@@ -12,8 +13,10 @@ import pytest
 import watersim as ws
 from watersim import wave_theory as wt
 from watersim.validation.absorption import (
+    ABSORPTION_WAVE,
     SOLITARY_CLOSED_FLUME,
     absorption_measure,
+    absorption_period,
     absorption_scene,
     solitary_closed_flume,
     solitary_residual,
@@ -81,6 +84,101 @@ def test_irregular_target_has_every_component() -> None:
 def test_a_tabulated_motion_has_no_target() -> None:
     law = _scene(ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.01)), ws.Piston()).law
     assert law.absorption_target is None and law.absorption_gain is None
+
+
+def test_the_near_field_is_in_quadrature_and_fades_into_the_progressive_wave() -> None:
+    """The linear wave-maker's elevation in front of the face: the piston's closed-form
+    evanescent coefficients, ``c_j ~ sinh(2 k_j d) / (k_j (2 k_j d + sinh 2 k_j d))`` (Dean &
+    Dalrymple 1991, section 6.2); the near field is in quadrature with the progressive wave,
+    ahead of it for a piston and behind it for a flap at kd = 1; gone four depths away."""
+    depth, x = 0.4, 0.05
+    omega = 2.0 * math.pi / absorption_period()
+    k = float(wt.wavenumber_from_omega(omega, depth))
+    kj = np.concatenate([[k], 1j * wt._evanescent_wavenumbers(omega, depth, 400, G)])
+    c = np.sinh(2.0 * kj * depth) / (kj * (2.0 * kj * depth + np.sinh(2.0 * kj * depth)))
+    expected = complex(np.sum(c / c[0] * np.exp(1j * kj * x)))
+    assert abs(wt.paddle_near_field(omega, depth, x, "piston") - expected) < 1e-6
+    for paddle, sign in (("piston", 1.0), ("flap", -1.0)):
+        near = wt.paddle_near_field(omega, depth, x, paddle) - cmath.exp(1j * k * x)
+        assert abs(near.real) < 1e-9 and sign * near.imag > 0.02, (paddle, near)
+        far = wt.paddle_near_field(omega, depth, 4.0 * depth, paddle)
+        assert abs(far - cmath.exp(4j * k * depth)) < 1e-5
+
+
+def _absorber(wave: ws.RegularWave | ws.SolitaryWave, paddle: ws.Piston | ws.Flap
+              ) -> tuple[ws.FlumeScene, dict]:
+    scene = _scene(wave, paddle)
+    absorption = scene.to_scene()["paddle"]["absorption"]
+    assert absorption["probe_offset"] == pytest.approx(2.0 * 0.03)
+    return scene, absorption
+
+
+@pytest.mark.parametrize("paddle", [ws.Piston(absorption=True), ws.Flap(absorption=True)])
+def test_the_absorber_targets_the_wave_at_its_probe_and_delays_the_return(paddle: ws.Piston
+                                                                          | ws.Flap) -> None:
+    """The core reads eta_M 2 dp in front of the face: the target is the paddle's linear wave
+    there (its near field included), and the lag and gain make the correction cancel a
+    returning wave at the face (``_Paddle.absorber``)."""
+    wave = ws.RegularWave(height=0.03, period=1.26, phase=0.4)
+    scene, absorption = _absorber(wave, paddle)
+    x, omega = absorption["probe_offset"], 2.0 * math.pi / 1.26
+    near = paddle.near_field(omega, 0.3, x, G)
+    (a, w, phi), = absorption["target"]["components"]
+    assert a == pytest.approx(0.015 * abs(near))
+    assert phi == pytest.approx(0.4 + math.pi / 2 - cmath.phase(near))
+    k = float(wt.wavenumber(1.26, 0.3))
+    loop = 1.0 / (2.0 * math.cos(k * x) - near)
+    assert 0.0 < cmath.phase(loop) < 2.0 * k * x
+    # with the drift term's and the mean removal's leads (10 periods: 0.016 rad each)
+    drift = 1.0 / (10.0 * 2.0 * math.pi)
+    delay = cmath.phase(loop) + 2.0 * math.atan(drift)
+    assert math.atan(omega * absorption["lag_time"]) == pytest.approx(delay)
+    assert absorption["gain"] == pytest.approx(
+        scene.law.absorption_gain * abs(loop) * (1.0 + drift**2) / math.cos(delay))
+
+
+def test_bound_harmonics_and_a_solitary_wave_travel_with_their_wave() -> None:
+    _, second = _absorber(ws.RegularWave(height=0.03, period=1.26),
+                          ws.Piston(order=2, absorption=True))
+    scene = _scene(ws.RegularWave(height=0.03, period=1.26), ws.Piston(order=2))
+    k, x = float(wt.wavenumber(1.26, 0.3)), second["probe_offset"]
+    at_face = scene.law.absorption_target["components"][1]  # type: ignore[index]
+    assert second["target"]["components"][1] == pytest.approx(
+        [at_face[0], at_face[1], at_face[2] - 2.0 * k * x])
+    scene, solitary = _absorber(ws.SolitaryWave(height=0.06), ws.Piston(absorption=True))
+    delay = solitary["probe_offset"] / float(wt.solitary_celerity(0.06, 0.3))
+    assert solitary["lag_time"] == pytest.approx(delay)
+    assert solitary["target"]["t"] == pytest.approx(
+        [t + delay for t in scene.law.absorption_target["t"]])  # type: ignore[index]
+    assert solitary["gain"] == scene.law.absorption_gain
+
+
+@pytest.mark.slow
+def test_before_the_wall_reflection_returns_the_absorber_sees_no_difference() -> None:
+    """absorption2d's piston at H/dp 1, absorbing, until the wall's reflection is back at
+    the paddle: the lagged difference eta_M - eta_T less its mean, which drives the correction
+    (the core's ``paddle_correction``), has a first harmonic below 5 % of the wave's amplitude
+    over the whole periods after the ramp. The target at the face, 2 dp behind the probe, left
+    11 %."""
+    period = absorption_period()
+    scene = absorption_scene(ws.Piston(absorption=True), dp=0.04, periods=10.0)
+    cg = float(wt.group_velocity(period, scene.flume.depth))
+    back = 2.0 * scene.flume.length / cg
+    sim = scene.build()
+    samples: list[tuple[float, float]] = []
+
+    def record(s: ws.Simulation) -> None:
+        _, _, since, lagged, mean = s.core.checkpoint()["paddle_correction"]
+        samples.append((since, lagged - mean))
+
+    sim.run(back, callback_every=period / 40.0, callback=record)
+    t, driving = (np.asarray(v) for v in zip(*samples, strict=True))
+    start = scene.law.ramp_duration + 0.5 * period
+    sel = (t >= start) & (t < start + period * math.floor((back - 0.3 * period - start) / period))
+    omega = 2.0 * math.pi / period
+    basis = np.column_stack([np.cos(omega * t[sel]), np.sin(omega * t[sel]), np.ones(sel.sum())])
+    (c, s_, _), *_ = np.linalg.lstsq(basis, driving[sel], rcond=None)
+    assert math.hypot(c, s_) < 0.05 * 0.5 * ABSORPTION_WAVE["height"]
 
 
 def test_absorption2d_measures_the_rereflected_share_of_the_incident_wave() -> None:

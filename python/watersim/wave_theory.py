@@ -590,6 +590,79 @@ def _evanescent_wavenumbers(omega: float, depth: float, count: int, g: float) ->
     return x / depth
 
 
+def _first_order_modes(
+    omega: float, d: float, paddle: Paddle, hinge: float, modes: int, g: float
+) -> tuple[npt.NDArray[np.complex128], tuple[FloatArray, ...], npt.NDArray[np.complex128],
+           npt.NDArray[np.complex128]]:
+    """The linear wave-maker's eigenfunction expansion at frequency omega (Biesel; Dean &
+    Dalrymple 1991, section 6.2): ``phi = sum a_j cosh(k_j (z + d)) e^(i k_j x)`` with time
+    factor e^(-i omega t), k_0 the progressive wavenumber and k_j = i kappa_j the ``modes``
+    evanescent ones, for a paddle face ``x = f(z) X``, ``X = Re(xi e^(-i omega t))``, xi = 1:
+    each a_j the projection of the paddle velocity ``-i omega f`` on its mode.
+
+    Returns ``(k, (s, w, f, f_z), mode, a)``: the wavenumbers; the quadrature nodes (z + d),
+    weights, profile and its slope; the modes at the nodes; the amplitudes.
+    """
+    k = np.concatenate([[float(wavenumber_from_omega(omega, d, g))],
+                        1j * _evanescent_wavenumbers(omega, d, modes, g)])
+    # composite 16-point Gauss-Legendre over the water column, a panel per half wave of the
+    # highest mode, split where the flap's profile has its kink
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    ends = [0.0, hinge, d] if paddle == "flap" and hinge > 0.0 else [0.0, d]
+    edges = np.unique(np.concatenate(
+        [np.linspace(a, b, max(2, math.ceil((modes + 1) * (b - a) / d) + 1))
+         for a, b in zip(ends[:-1], ends[1:], strict=False)]))
+    half = 0.5 * np.diff(edges)[:, None]
+    s = (half * nodes + 0.5 * (edges[1:] + edges[:-1])[:, None]).ravel()  # z + d
+    w = (half * weights).ravel()
+    if paddle == "piston":
+        f, f_z = np.ones_like(s), np.zeros_like(s)
+    else:
+        above = s > hinge
+        f = np.where(above, (s - hinge) / (d - hinge), 0.0)
+        f_z = np.where(above, 1.0 / (d - hinge), 0.0)
+    mode = np.cosh(np.multiply.outer(k, s))
+    # phi_x(0, z) = -i omega xi f
+    norms = (mode * mode) @ w
+    a = -omega * ((mode * f) @ w) / (k * norms)
+    return k, (s, w, f, f_z), mode, a
+
+
+NEAR_FIELD_DECAY = 1e-10
+"""Where :func:`paddle_near_field` stops its evanescent series: the last mode kept has decayed
+to this over the distance from the face (at least 8 modes, at most :data:`SCHAFFER_MODES`)."""
+
+
+def paddle_near_field(
+    omega: float, depth: float, x: float, paddle: Paddle = "piston", hinge_height: float = 0.0,
+    g: float = G,
+) -> complex:
+    """The linear wave-maker's surface elevation ``x`` [m] in front of its mean face, over that
+    of its progressive wave at the face: ``F = sum_j c_j e^(i k_j x) / c_0``, time factor
+    e^(-i omega t), from :func:`_first_order_modes` (progressive wave and evanescent near field;
+    Dean & Dalrymple 1991, section 6.2). An elevation ``a sin(omega t + phase)`` of the
+    progressive wave at the face is ``|F| a sin(omega t + phase - arg F)`` at x. Far from the
+    face F tends to ``e^(i k x)``; near it the evanescent modes add a share in quadrature with
+    it, which a piston and a flap give with opposite signs (tests/test_wave_laws.py).
+
+    Args:
+        omega: angular frequency [rad/s], > 0.
+        depth: still-water depth [m], > 0.
+        x: distance in front of the face [m], > 0 (the series does not converge at the face).
+        paddle: ``"piston"`` or ``"flap"`` hinged ``hinge_height`` [m] above the bed.
+    """
+    d = float(_positive("depth", depth))
+    distance = float(_positive("x", x))
+    _choice("paddle", paddle, ("piston", "flap"))
+    # kappa_n > (n - 1/2) pi / d: the modes that decay to NEAR_FIELD_DECAY over x
+    wanted = math.ceil(-math.log(NEAR_FIELD_DECAY) * d / (math.pi * distance) + 0.5)
+    modes = min(SCHAFFER_MODES, max(8, wanted))
+    k, _, _, a = _first_order_modes(float(_positive("omega", omega)), d, paddle,
+                                    float(hinge_height), modes, g)
+    c = a * np.cosh(k * d)
+    return complex(np.sum(c / c[0] * np.exp(1j * k * distance)))
+
+
 def second_order_stroke(
     height: float,
     period: float,
@@ -636,30 +709,9 @@ def second_order_stroke(
     if paddle == "flap" and hinge >= d:
         raise ValueError(f"hinge_height: must be below the still-water level, got {hinge!r}")
     omega = 2.0 * math.pi / T
-    k = np.concatenate([[float(wavenumber_from_omega(omega, d, g))],
-                        1j * _evanescent_wavenumbers(omega, d, modes, g)])
+    k, (s, w, f, f_z), mode, a = _first_order_modes(omega, d, paddle, hinge, modes, g)
     big_k = float(wavenumber_from_omega(2.0 * omega, d, g))
-    # composite 16-point Gauss-Legendre over the water column, a panel per half wave of the
-    # highest mode, split where the flap's profile has its kink
-    nodes, weights = np.polynomial.legendre.leggauss(16)
-    ends = [0.0, hinge, d] if paddle == "flap" and hinge > 0.0 else [0.0, d]
-    edges = np.unique(np.concatenate(
-        [np.linspace(a, b, max(2, math.ceil((modes + 1) * (b - a) / d) + 1))
-         for a, b in zip(ends[:-1], ends[1:], strict=False)]))
-    half = 0.5 * np.diff(edges)[:, None]
-    s = (half * nodes + 0.5 * (edges[1:] + edges[:-1])[:, None]).ravel()  # z + d
-    w = (half * weights).ravel()
-    if paddle == "piston":
-        f, f_z = np.ones_like(s), np.zeros_like(s)
-    else:
-        above = s > hinge
-        f = np.where(above, (s - hinge) / (d - hinge), 0.0)
-        f_z = np.where(above, 1.0 / (d - hinge), 0.0)
-    mode = np.cosh(np.multiply.outer(k, s))
     mode_z = k[:, None] * np.sinh(np.multiply.outer(k, s))
-    # first order, time factor e^(-i omega t): phi_x(0, z) = -i omega xi f with xi = i S/2
-    norms = (mode * mode) @ w
-    a = -omega * ((mode * f) @ w) / (k * norms)
     cosh_kd, sinh_kd = np.cosh(k * d), np.sinh(k * d)
     xi = (0.5 * H) / (1j * omega / g * a[0] * cosh_kd[0])  # eta = (H/2) cos(omega t) at x = 0
     a = a * xi
@@ -1774,6 +1826,8 @@ class SecondOrderPaddleMotion:
         frequencies: sum and difference frequencies [Hz] (multiples of 1 / repeat period).
         stroke_amplitudes, stroke_phases: [m], [rad].
         elevation_amplitudes, elevation_phases: [m], [rad].
+        wavenumbers: the wavenumber [rad/m] the bound wave at each frequency travels with,
+            ``k_n +- k_m`` of its pairs weighted by their elevation amplitudes.
     """
 
     frequencies: FloatArray
@@ -1781,6 +1835,7 @@ class SecondOrderPaddleMotion:
     stroke_phases: FloatArray
     elevation_amplitudes: FloatArray
     elevation_phases: FloatArray
+    wavenumbers: FloatArray
 
 
 def second_order_piston_motion(
@@ -1822,6 +1877,8 @@ def second_order_piston_motion(
     size = round(2.0 * float(np.max(motion.frequencies)) * motion.repeat_period) + 1
     strokes = np.zeros(size, dtype=np.complex128)
     bounds = np.zeros(size, dtype=np.complex128)
+    travel = np.zeros(size)
+    weight = np.zeros(size)
     n, m = np.triu_indices(omega.size)
     higher = omega[n] > omega[m]
     for sign in (1.0, -1.0):
@@ -1847,6 +1904,8 @@ def second_order_piston_motion(
         index = np.rint(w2 / (2.0 * np.pi) * motion.repeat_period).astype(np.int64)
         np.add.at(strokes, index, xi2)
         np.add.at(bounds, index, eta2)
+        np.add.at(travel, index, np.abs(eta2) * k2)
+        np.add.at(weight, index, np.abs(eta2))
     floor = drop * float(np.max(motion.stroke_amplitudes))
     keep = np.nonzero((np.abs(strokes) > floor) | (np.abs(bounds) > floor))[0]
     keep = keep[keep > 0]
@@ -1857,6 +1916,7 @@ def second_order_piston_motion(
         stroke_phases=0.5 * np.pi - np.angle(strokes[keep]),
         elevation_amplitudes=np.abs(bounds[keep]),
         elevation_phases=0.5 * np.pi - np.angle(bounds[keep]),
+        wavenumbers=travel[keep] / np.maximum(weight[keep], np.finfo(float).tiny),
     )
 
 

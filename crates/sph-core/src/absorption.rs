@@ -20,8 +20,30 @@
 //! to zero, so that the paddle keeps its stroke centred (the drift correction of Altomare et
 //! al. 2017, section 2.3).
 //!
+//! The probe stands `x_p` in front of the face (it cannot read the water through the paddle's
+//! own particles), so it sees a wave coming back `x_p / c` before the paddle does, and the
+//! paddle's own correction wave, with its evanescent near field, after it. Two things make up
+//! for that, both computed by the caller from the wave law and `x_p`: the target is the
+//! elevation the generated wave has at the probe, not at the face; and the difference passes
+//! through a first-order lag `T_l de/dt = (eta_M - eta_T) - e` before it drives the paddle, the
+//! phase lag `atan(omega T_l)` it gives at the wave's frequency being the one that makes the
+//! correction cancel the returning wave at the paddle (with a perfect absorber the probe sees
+//! the returning wave alone, which reaches the paddle `x_p / c` later: a delay of `k x_p`,
+//! plus the near field's share). The gain includes the lag's loss of amplitude.
+//!
+//! The difference also has a mean that no wave carries: the still water's own settling, the
+//! waves' set-down, and the probe riding on the face, which oscillates with the wave so that
+//! it reads the crests a little further out than the troughs. Integrated, a steady difference
+//! `e_0` moves the paddle's mean position by `-G tau e_0` (a flap's `G tau` of a hundred makes a
+//! millimetre of it a decimetre, more than its stroke, and the paddle's wave then leaves from
+//! the wrong place). The difference's running mean `m` (`tau dm/dt = (eta_M - eta_T) - m`) is
+//! therefore taken off:
+//!
+//! `dX_c/dt = -G (e - m) - X_c / tau`
+//!
 //! The solver evaluates it once per step before moving the paddle: `eta_M` from the fluid at
-//! the start of the step, the rate held over the step.
+//! the start of the step, `e` updated over the step just done as if `eta_M - eta_T` had been
+//! its present value throughout, the rate held over the new step.
 
 use serde::{Deserialize, Serialize};
 
@@ -46,9 +68,12 @@ pub struct Absorption {
     pub probe_offset: Real,
     /// Time constant `tau` of the drift correction [s].
     pub drift_time: Real,
+    /// Time constant `T_l` of the lag applied to `eta_M - eta_T` [s] (0: none).
+    pub lag_time: Real,
 }
 
-/// The correction's state: displacement `X_c` [m] and its rate [m/s] over the current step.
+/// The correction's state: displacement `X_c` [m] and its rate [m/s] over the current step,
+/// and the lagged difference `e` and the mean `m` that set the rate.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct AbsorberState {
     /// `X_c` at `since` [m].
@@ -57,6 +82,10 @@ pub struct AbsorberState {
     pub rate: Real,
     /// Start of the current step [s].
     pub since: Real,
+    /// `e` at `since` [m].
+    pub lagged: Real,
+    /// `m` at `since` [m].
+    pub mean: Real,
 }
 
 /// The fields as read, before [`Absorption::validate`].
@@ -67,12 +96,14 @@ struct Fields {
     gain: Real,
     probe_offset: Real,
     drift_time: Real,
+    #[serde(default)]
+    lag_time: Real,
 }
 
 impl TryFrom<Fields> for Absorption {
     type Error = Error;
     fn try_from(f: Fields) -> Result<Self> {
-        let a = Absorption { target: f.target, gain: f.gain, probe_offset: f.probe_offset, drift_time: f.drift_time };
+        let a = Absorption { target: f.target, gain: f.gain, probe_offset: f.probe_offset, drift_time: f.drift_time, lag_time: f.lag_time };
         a.validate("").map(|()| a)
     }
 }
@@ -88,6 +119,9 @@ impl Absorption {
                 return Err(Error::invalid(under(name), format!("must be a positive number, got {value}")));
             }
         }
+        if !(self.lag_time.is_finite() && self.lag_time >= 0.0) {
+            return Err(Error::invalid(under("lag_time"), format!("must be zero or a positive number, got {}", self.lag_time)));
+        }
         Ok(())
     }
 
@@ -96,7 +130,11 @@ impl Absorption {
     pub fn advance(&self, state: AbsorberState, t: Real, eta_measured: Option<Real>) -> AbsorberState {
         let offset = state.offset_at(t);
         let reflected = eta_measured.map_or(0.0, |eta| eta - self.target.eval(t).0);
-        AbsorberState { offset, rate: -self.gain * reflected - offset / self.drift_time, since: t }
+        // each filter's exact solution over the step for an input held at its present value
+        let relax = |previous: Real, time: Real| reflected + (previous - reflected) * (-(t - state.since) / time).exp();
+        let lagged = if self.lag_time > 0.0 { relax(state.lagged, self.lag_time) } else { reflected };
+        let mean = relax(state.mean, self.drift_time);
+        AbsorberState { offset, rate: -self.gain * (lagged - mean) - offset / self.drift_time, since: t, lagged, mean }
     }
 }
 
@@ -118,6 +156,7 @@ mod tests {
             gain: 3.0,
             probe_offset: 0.05,
             drift_time: 10.0,
+            lag_time: 0.0,
         }
     }
 
@@ -136,7 +175,8 @@ mod tests {
         let t = 1.3;
         // a crest coming back: the paddle retreats (the water under a crest travelling toward
         // -x moves toward -x) at G times its elevation
-        let s = a.advance(AbsorberState::default(), t, Some(a.target.eval(t).0 + 0.01));
+        let start = AbsorberState { since: t, ..Default::default() };
+        let s = a.advance(start, t, Some(a.target.eval(t).0 + 0.01));
         assert!((s.rate + 0.03).abs() < 1e-15);
         assert!((s.offset_at(t + 0.1) + 0.003).abs() < 1e-15);
         // dry probe: only the drift term
@@ -147,7 +187,7 @@ mod tests {
     #[test]
     fn drift_correction_returns_the_offset_to_zero() {
         let a = absorption();
-        let mut s = AbsorberState { offset: 0.05, rate: 0.0, since: 0.0 };
+        let mut s = AbsorberState { offset: 0.05, ..Default::default() };
         let dt = 0.01;
         for i in 0..3000 {
             let t = i as Real * dt;
@@ -159,6 +199,43 @@ mod tests {
     }
 
     #[test]
+    fn a_steady_difference_leaves_the_paddle_where_it_was() {
+        // integrated, 1 mm of steady difference would hold the paddle G tau e_0 = 30 mm back;
+        // its running mean taken off, the correction comes back to zero within a few tau
+        let a = absorption();
+        let (e0, dt) = (0.001, 0.01);
+        let mut s = AbsorberState::default();
+        let mut furthest: Real = 0.0;
+        for i in 0..10_000 {
+            let t = i as Real * dt;
+            s = a.advance(s, t, Some(a.target.eval(t).0 + e0));
+            furthest = furthest.max(-s.offset);
+        }
+        let held = a.gain * a.drift_time * e0;
+        assert!(furthest < 0.4 * held, "{furthest}");
+        assert!(s.offset.abs() < 0.01 * held, "{}", s.offset);
+    }
+
+    #[test]
+    fn the_lag_delays_the_difference_by_its_phase() {
+        // a difference sin(omega t) through the lag: in the steady state -G A sin(omega t - phi)
+        // with A = 1 / sqrt(1 + (omega T_l)^2), phi = atan(omega T_l)
+        let mut a = absorption();
+        a.lag_time = 0.05;
+        a.gain = 1.0;
+        a.drift_time = 1e12;
+        let omega = 2.0;
+        let (mut s, dt) = (AbsorberState::default(), 1e-4);
+        for i in 0..100_000 {
+            let t = i as Real * dt;
+            s = a.advance(s, t, Some(a.target.eval(t).0 + (omega * t).sin()));
+        }
+        let t = s.since;
+        let (gain, phase) = (1.0 / (1.0 + (omega * a.lag_time).powi(2)).sqrt(), (omega * a.lag_time).atan());
+        assert!((s.rate + gain * (omega * t - phase).sin()).abs() < 1e-3, "{}", s.rate);
+    }
+
+    #[test]
     fn bad_parameters_name_the_field() {
         let mut a = absorption();
         a.gain = 0.0;
@@ -167,5 +244,8 @@ mod tests {
         let mut a = absorption();
         a.drift_time = Real::NAN;
         assert!(a.validate("paddle.absorption").unwrap_err().to_string().contains("drift_time"));
+        let mut a = absorption();
+        a.lag_time = -1.0;
+        assert!(a.validate("paddle.absorption").unwrap_err().to_string().contains("lag_time"));
     }
 }

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import cmath
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -32,10 +34,20 @@ class PaddleLaw:
     duration: float | None = None
     absorption_target: dict[str, Any] | None = None
     """The core's law of the target surface elevation at the paddle (the wave the law makes,
-    by linear theory), None where the wave has no target (a tabulated motion)."""
+    by linear theory), None where the wave has no target (a tabulated motion).
+    :meth:`_Paddle.absorber` moves it to the absorber's probe."""
     absorption_gain: float | None = None
     """The paddle's displacement rate per metre of elevation at the wave's (peak) frequency,
     ``omega / (H/S)`` [1/s] (Schaffer & Klopman 2000)."""
+    absorption_omega: float | None = None
+    """The (peak) angular frequency [rad/s] of a harmonic target, at which the gain is set."""
+    absorption_wavenumbers: tuple[float | None, ...] | None = None
+    """How each component of a harmonic target travels from the paddle to the probe: None for
+    a free wave (the paddle's linear solution, evanescent near field included), else the
+    wavenumber [rad/m] of a component bound to others (a second-order harmonic, a steady wave's
+    higher harmonic), which travels with them."""
+    absorption_celerity: float | None = None
+    """The speed [m/s] at which a tabulated target (a solitary wave's) travels."""
     absorption_drift_time: float | None = None
     """Time constant of the absorption's drift correction [s]: ten (peak) periods."""
 
@@ -142,18 +154,70 @@ class _Paddle:
                              "elevation to absorb against; set paddle.absorption = false")
         return bool(self.absorption)
 
-    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None
-                ) -> dict[str, Any]:
+    @property
+    def hinge(self) -> float:
+        """The hinge's height above the floor [m] (a flap's; 0 for a piston)."""
+        return 0.0
+
+    def absorber(self, law: PaddleLaw, depth: float, probe_offset: float, g: float
+                 ) -> dict[str, Any]:
+        """The core's ``absorption`` of ``law`` read ``probe_offset`` [m] in front of the face
+        (``absorption.rs``). The probe sees the paddle's own wave after the face does and a
+        wave coming back before the paddle does, so the target is the generated wave at the
+        probe, and the difference is delayed by the lag that makes the correction cancel the
+        returning wave at the paddle.
+
+        With ``F`` the paddle's linear elevation at the probe over its progressive wave at the
+        face (:func:`watersim.wave_theory.paddle_near_field`), a returning wave ``eta_R`` (at
+        the face) and the correction's wave ``eta_c`` give ``2 cos(k x) eta_R + F eta_c`` at
+        the probe (the still paddle reflects ``eta_R``); the loop ``eta_c = -L (that)`` absorbs
+        it, ``eta_c = -eta_R``, when ``L = 1 / (2 cos(k x) - F)``: ``e^(i k x)`` without a near
+        field, a delay of x / c. At the (peak) frequency the core's first-order lag gives the
+        phase ``arg L`` and the gain makes up its modulus. A tabulated target is a long wave:
+        it is moved, and the difference delayed, by x / c."""
+        target = dict(law.absorption_target or {})
+        gain, lag = float(law.absorption_gain or 0.0), 0.0
+        if target.get("type") == "table":
+            assert law.absorption_celerity is not None
+            lag = probe_offset / law.absorption_celerity
+            target["t"] = [t + lag for t in target["t"]]
+        else:
+            assert law.absorption_omega is not None and law.absorption_wavenumbers is not None
+            parts = []
+            for (amplitude, omega, phase), bound in zip(target["components"],
+                                                        law.absorption_wavenumbers, strict=True):
+                f = (cmath.exp(1j * bound * probe_offset) if bound is not None
+                     else self.near_field(omega, depth, probe_offset, g))
+                parts.append([amplitude * abs(f), omega, phase - cmath.phase(f)])
+            target["components"] = parts
+            omega = law.absorption_omega
+            k = float(wt.wavenumber_from_omega(omega, depth, g))
+            loop = 1.0 / (2.0 * math.cos(k * probe_offset)
+                          - self.near_field(omega, depth, probe_offset, g))
+            # the core's drift term and the removal of the difference's mean (both over the
+            # drift time) each lead by atan(1 / (omega tau)) and keep omega tau / sqrt(1 +
+            # (omega tau)^2) of the amplitude: the lag and the gain make up for them too
+            drift = 1.0 / (omega * float(law.absorption_drift_time or math.inf))
+            delay = max(0.0, cmath.phase(loop) + 2.0 * math.atan(drift))  # a lag cannot lead
+            lag = math.tan(delay) / omega
+            gain *= abs(loop) * (1.0 + drift * drift) / math.cos(delay)
+        return {"target": target, "gain": gain, "probe_offset": probe_offset,
+                "drift_time": law.absorption_drift_time, "lag_time": lag}
+
+    def near_field(self, omega: float, depth: float, x: float, g: float) -> complex:
+        """This paddle's linear elevation ``x`` [m] in front of its face at ``omega`` over its
+        progressive wave at the face (:func:`watersim.wave_theory.paddle_near_field`)."""
+        return wt.paddle_near_field(omega, depth, x, self.kind, self.hinge, g)
+
+    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None,
+                g: float = wt.G) -> dict[str, Any]:
         """The core's paddle JSON driven by ``law`` in water ``depth`` [m] deep; with a
         ``probe_offset`` [m], absorbing the waves coming back (the surface read that far in
-        front of the face; :mod:`watersim`'s core, ``absorption.rs``)."""
+        front of the face: :meth:`absorber`)."""
         paddle: dict[str, Any] = {"kind": self.kind, "x": 0.0, "hinge_z": None, "swl_z": None,
                                   "law": law.law}
         if probe_offset is not None:
-            paddle["absorption"] = {"target": law.absorption_target,
-                                    "gain": law.absorption_gain,
-                                    "probe_offset": probe_offset,
-                                    "drift_time": law.absorption_drift_time}
+            paddle["absorption"] = self.absorber(law, depth, probe_offset, g)
         return paddle
 
 
@@ -260,9 +324,9 @@ class Flap(_Paddle):
         # the plate's top swings further than the still-water level
         return backward * ((top - self.hinge) / (depth - self.hinge))
 
-    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None
-                ) -> dict[str, Any]:
-        return {**super().to_core(law, depth, probe_offset), "hinge_z": float(self.hinge),
+    def to_core(self, law: PaddleLaw, depth: float, probe_offset: float | None = None,
+                g: float = wt.G) -> dict[str, Any]:
+        return {**super().to_core(law, depth, probe_offset, g), "hinge_z": float(self.hinge),
                 "swl_z": float(depth)}
 
 

@@ -642,7 +642,7 @@ class FlumeScene(SceneBuilder):
             obstacles.append(flume.beach.to_core(self.bed_profile))
         # the surface read two dp in front of the face: clear of the paddle's own particles
         probe = 2.0 * float(self.dp) if self.absorbs else None  # type: ignore[arg-type]
-        paddle = self.paddle.to_core(self.law, flume.depth, probe)
+        paddle = self.paddle.to_core(self.law, flume.depth, probe, self.g)
         scene: dict[str, Any] = {
             "tank": tank,
             "obstacles": obstacles,

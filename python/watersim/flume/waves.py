@@ -182,6 +182,8 @@ class RegularWave(_Wave):
             design_height=self.height, stroke=stroke * gain,
             second_order_amplitude=second_order * gain,
             absorption_target=target, absorption_gain=law.omega * stroke * gain / self.height,
+            absorption_omega=law.omega,
+            absorption_wavenumbers=(None, 2.0 * law.wavenumber)[:len(target)],
         )
 
     def _stream_function_law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
@@ -206,6 +208,9 @@ class RegularWave(_Wave):
             second_order_amplitude=strokes[1] * gain if len(strokes) > 1 else 0.0,
             absorption_target=target,
             absorption_gain=omega * gain / float(wt.piston_height_to_stroke(k, depth)),
+            # the first harmonic as a free wave, the higher ones travelling with it
+            absorption_omega=omega,
+            absorption_wavenumbers=(None, *(n * k for n in range(2, len(target) + 1))),
         )
 
     def default_sample_interval(self, depth: float, g: float) -> float:
@@ -497,6 +502,7 @@ class SolitaryWave(_Wave):
                                "x": eta.tolist()},
             # linear long waves: U = sqrt(g/d) eta
             absorption_gain=math.sqrt(g / depth),
+            absorption_celerity=c,
             absorption_drift_time=10.0 * duration,
         )
 
@@ -608,6 +614,7 @@ def _spectral_law(motion: wt.IrregularPaddleMotion, paddle: Paddle, depth: float
     ]
     peak = int(np.argmin(np.abs(np.asarray(motion.frequencies) - 1.0 / tp)))
     absorption = float(omegas[peak] * amplitudes[peak] / motion.wave_amplitudes[peak])
+    travel: list[float | None] = [None] * len(target)
     if paddle.order == 2:
         # the pairs' sub- and superharmonics, and their bound waves in the target
         second = wt.second_order_piston_motion(motion)
@@ -616,9 +623,12 @@ def _spectral_law(motion: wt.IrregularPaddleMotion, paddle: Paddle, depth: float
                        zip(second.stroke_amplitudes, omegas2, second.stroke_phases, strict=True)]
         target += [[float(a), float(w), float(p)] for a, w, p in
                    zip(second.elevation_amplitudes, omegas2, second.elevation_phases, strict=True)]
+        travel += [float(k) for k in second.wavenumbers]
         bound += float(np.sum(second.stroke_amplitudes)) * gain
     return paddle.harmonic_law(components, bound, tp, design_height=design_height,
-                               absorption_target=target, absorption_gain=absorption)
+                               absorption_target=target, absorption_gain=absorption,
+                               absorption_omega=float(omegas[peak]),
+                               absorption_wavenumbers=tuple(travel))
 
 
 Wave = RegularWave | IrregularWave | FocusedWave | SolitaryWave | TabulatedMotion

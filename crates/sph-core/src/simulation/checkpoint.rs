@@ -28,8 +28,9 @@ pub struct Checkpoint {
     pub n_excluded: usize,
     pub energy0: (Real, Real),
     pub gauges: Vec<GaugeRecord>,
-    /// Active absorption's correction `(offset, rate, since)`; None without absorption.
-    pub paddle_correction: Option<(Real, Real, Real)>,
+    /// Active absorption's correction `(offset, rate, since, lagged, mean)`; None without
+    /// absorption.
+    pub paddle_correction: Option<(Real, Real, Real, Real, Real)>,
 }
 
 
@@ -54,7 +55,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             n_excluded: self.n_excluded,
             energy0: self.energy0,
             gauges: self.gauges.clone(),
-            paddle_correction: self.absorber.map(|a| (a.offset, a.rate, a.since)),
+            paddle_correction: self.absorber.map(|a| (a.offset, a.rate, a.since, a.lagged, a.mean)),
         }
     }
     /// Continues from a checkpoint of a run of the same scene.
@@ -112,8 +113,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.n_excluded = c.n_excluded;
         self.energy0 = c.energy0;
         self.gauges = c.gauges.clone();
-        if let (Some(state), Some((offset, rate, since))) = (&mut self.absorber, c.paddle_correction) {
-            *state = AbsorberState { offset, rate, since };
+        if let (Some(state), Some((offset, rate, since, lagged, mean))) = (&mut self.absorber, c.paddle_correction) {
+            *state = AbsorberState { offset, rate, since, lagged, mean };
         }
         // The saved order is already sorted: the stable sort keeps it and rebuilds the cells.
         self.sort_group(GROUP_FIXED);
