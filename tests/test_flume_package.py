@@ -69,7 +69,7 @@ def test_modules_and_functions_stay_small_and_dispatch_is_by_method() -> None:
 def test_every_model_class_declares_its_scene_file_tag_and_choices() -> None:
     assert set(flume.TAGS) == {*typing.get_args(flume.scene.Beach), *typing.get_args(
         flume.waves.Wave), *typing.get_args(flume.paddles.Paddle), *typing.get_args(
-        flume_gauges.Gauge)}
+        flume_gauges.Gauge), *typing.get_args(flume.structures.Structure)}
     assert len(set(flume.TAGS.values())) == len(flume.TAGS)
     assert flume.TAGS[ws.RegularWave] == "regular" and flume.TAGS[ws.VelocityWindow] == "window"
     assert flume.CHOICES[(ws.IrregularWave, "spectrum")] == tuple(flume.SPECTRA)

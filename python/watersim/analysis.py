@@ -52,6 +52,7 @@ __all__ = [
     "WaterLevelEnvelopes",
     "WaveSpectrum",
     "ZeroCrossingWaves",
+    "load_statistics",
     "breaking_onset_from_crests",
     "breaking_onset_from_gauges",
     "crest_celerity",
@@ -1449,3 +1450,71 @@ def mean_level_blocks(
         means[b] = _trapezoid(np.interp(grid, tt, e), grid) / (block_periods * T)
     return MeanLevelBlocks(starts=starts, means=means, block_periods=int(block_periods),
                            spread=float(np.ptp(means)), drift=float(means[-1] - means[0]))
+
+
+def load_statistics(
+    t: npt.ArrayLike, fx: npt.ArrayLike, fz: npt.ArrayLike
+) -> dict[str, float | int | None]:
+    """Statistics of the wave loads on a structure from its horizontal and vertical force
+    records (one force unit: N, or N/m per unit width).
+
+    - ``Fx_max``, ``Fx_min``, ``Fz_max``, ``Fz_min``, ``Fx_mean``, ``Fz_mean``: extremes and
+      means over the record;
+    - ``impulse``: the impulse of the largest event, the integral of ``Fx - Fx_mean`` over the
+      excursion above the mean that holds ``Fx_max`` (trapezoidal, crossings interpolated
+      linearly), with ``impulse_start`` and ``impulse_end`` its times;
+    - ``Fx_significant``: the mean of the highest third of the per-wave maxima of ``Fx``,
+      a wave running from one zero-up-crossing of ``Fx - Fx_mean`` to the next (the
+      significant force, as the significant height of the waves that cause it), with
+      ``n_waves``; None with fewer than one complete wave.
+
+    Raises:
+        ValueError: bad input (NaN, mismatched lengths, time not increasing).
+    """
+    x = _series("fx", fx)
+    z = _series("fz", fz)
+    tt = _times(t, x.size, "fx")
+    if z.size != x.size:
+        raise ValueError(f"fz: expected {x.size} samples like fx, got {z.size}")
+    mean = float(np.mean(x))
+    out: dict[str, float | int | None] = {
+        "Fx_max": float(np.max(x)), "Fx_min": float(np.min(x)),
+        "Fz_max": float(np.max(z)), "Fz_min": float(np.min(z)),
+        "Fx_mean": mean, "Fz_mean": float(np.mean(z)),
+    }
+    out.update(_largest_event_impulse(tt, x - mean))
+    try:
+        waves = zero_crossing_waves(x, tt, kind="up", mean_level=mean)
+    except ValueError:
+        out["Fx_significant"], out["n_waves"] = None, 0
+        return out
+    maxima = np.sort(waves.crest_elevations)[::-1]
+    third = max(1, maxima.size // 3)
+    out["Fx_significant"] = float(np.mean(maxima[:third]))
+    out["n_waves"] = int(maxima.size)
+    return out
+
+
+def _largest_event_impulse(t: FloatArray, excess: FloatArray) -> dict[str, float | None]:
+    """``impulse``, ``impulse_start``, ``impulse_end`` of the run of positive ``excess`` around
+    its largest value (see :func:`load_statistics`)."""
+    peak = int(np.argmax(excess))
+    if excess[peak] <= 0.0:
+        return {"impulse": 0.0, "impulse_start": None, "impulse_end": None}
+    first = peak
+    while first > 0 and excess[first - 1] > 0.0:
+        first -= 1
+    last = peak
+    while last < excess.size - 1 and excess[last + 1] > 0.0:
+        last += 1
+    times, values = list(t[first:last + 1]), list(excess[first:last + 1])
+    if first > 0:  # the up-crossing, interpolated between the samples around it
+        a, b = excess[first - 1], excess[first]
+        times.insert(0, t[first - 1] + (t[first] - t[first - 1]) * a / (a - b))
+        values.insert(0, 0.0)
+    if last < excess.size - 1:
+        a, b = excess[last], excess[last + 1]
+        times.append(t[last] + (t[last + 1] - t[last]) * a / (a - b))
+        values.append(0.0)
+    return {"impulse": _trapezoid(np.asarray(values), np.asarray(times)),
+            "impulse_start": float(times[0]), "impulse_end": float(times[-1])}

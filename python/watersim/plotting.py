@@ -17,6 +17,9 @@ What is drawn depends on what the run wrote:
 - ``velocity_NAME.png`` per ``velocity_NAME.csv``: a velocity probe's components against time
   at each point; a window's mean over its wet points against time, its field at the last
   sample, and its time-mean velocity over the time-mean vorticity where always wet;
+- ``forces.png``: per force gauge of ``gauges.csv`` (``analysis.json`` ``forces``), the
+  horizontal and vertical force on its structure against time, with the largest event whose
+  impulse is given shaded and the significant force drawn;
 - ``front.png``: dam-break surge front of ``front.csv`` against Martin & Moyce (1952) in their
   dimensionless form ``x / a`` against ``t sqrt(2 g / a)`` (a the column width);
 - ``snapshot.png``: the particles of the last ``.vtu`` snapshot, fluid coloured by speed.
@@ -51,6 +54,9 @@ BREAKING_RATIO = 0.78
 
 _DEFAULT_GAUGE = re.compile(r"^eta_x(\d+)p(\d+)")
 """A default elevation gauge's column (``eta_x1p250_m``): its x is in the name."""
+
+_LOAD_COLUMN = re.compile(r"_(Pa|N|N_per_m|N_m|N_m_per_m)$")
+"""A column of gauges.csv that holds a pressure, force or moment, not an elevation."""
 
 
 class PlotError(Exception):
@@ -228,7 +234,7 @@ def _gauge_columns(header: list[str], analysis: dict[str, Any]) -> tuple[list[_G
     by_column = {csv_column(str(g.get("name")), "m"): g for g in analysis.get("gauges") or []}
     gauges = []
     for col, column in enumerate(header):
-        if col == 0 or col == runup_col:
+        if col == 0 or col == runup_col or _LOAD_COLUMN.search(column):
             continue
         entry = by_column.get(column, {})
         x = _number(entry.get("x"))
@@ -444,6 +450,44 @@ def _plot_runup(analysis: dict[str, Any], csv_path: Path | None, out: Path) -> P
     ax2.set_title(title, fontsize=9)
     fig.tight_layout()
     return _save(fig, out / "runup.png")
+
+
+def _plot_forces(analysis: dict[str, Any], csv_path: Path | None, out: Path) -> Path | None:
+    forces = analysis.get("forces") or []
+    if not forces or csv_path is None:
+        return None
+    header, data = _read_csv(csv_path)
+    if data.shape[0] < 2:
+        return None
+    plt = _pyplot()
+    t = data[:, 0]
+    fig, axes = plt.subplots(len(forces), 1, sharex=True, squeeze=False,
+                             figsize=(9, 1.2 + 2.4 * len(forces)))
+    for ax, info in zip(axes[:, 0], forces, strict=True):
+        prefix = csv_column(str(info["name"]))
+        for component, colour in (("x", "tab:blue"), ("z", "tab:orange")):
+            column = next((c for c in header if c.startswith(f"{prefix}_F{component}_")), None)
+            if column is not None:
+                unit = column[len(f"{prefix}_F{component}_"):].replace("_per_", "/")
+                ax.plot(t, data[:, header.index(column)], color=colour, lw=0.9,
+                        label=f"F{component} [{unit}]")
+        start, end = _number(info.get("impulse_start")), _number(info.get("impulse_end"))
+        if start is not None and end is not None:
+            impulse = _number(info.get("impulse")) or 0.0
+            ax.axvspan(start, end, color="tab:red", alpha=0.15,
+                       label=f"largest event, impulse {impulse:.3g}")
+        significant = _number(info.get("Fx_significant"))
+        if significant is not None:
+            ax.axhline(significant, color="tab:blue", lw=0.8, ls="--",
+                       label=f"significant Fx {significant:.3g}")
+        ax.set_ylabel("force", fontsize=8)
+        ax.set_title(f"{info['name']}: force on structure {info.get('structure')!r}",
+                     fontsize=9, loc="left")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left", ncols=2)
+    axes[-1, 0].set_xlabel("t [s]")
+    fig.tight_layout()
+    return _save(fig, out / "forces.png")
 
 
 _VELOCITY_COLUMN = re.compile(r"^([uvw])_(.+)_m_per_s$")
@@ -677,6 +721,7 @@ def plot_run(directory: str | os.PathLike[str], out: str | os.PathLike[str] | No
     if analysis:
         written.append(_plot_envelopes(analysis, summary, figs))
         written.append(_plot_runup(analysis, gauges_csv, figs))
+        written.append(_plot_forces(analysis, gauges_csv, figs))
     written += [_plot_velocity(path, figs) for path in velocity_csvs]
     if front_csv is not None:
         written.append(_plot_front(front_csv, summary, figs))

@@ -406,6 +406,8 @@ def load(directory: str | Path) -> xarray.Dataset:
     - ``velocity_NAME`` (time_NAME, point, component) for each velocity probe and window [m/s],
       with the points' coordinates, and ``kernel_sum_NAME`` (below 0.5: the point is dry);
     - ``pressure_NAME`` (time_NAME, point_NAME) for each pressure gauge [Pa], NaN where dry.
+    - ``force_NAME`` (time_NAME, component) and ``moment_NAME`` (time_NAME, moment_axis_NAME)
+      for each force gauge [N, N m; per unit width in 2D, N/m and N m/m].
 
     Each gauge class gives its own variables (``dataset_variables``).
 

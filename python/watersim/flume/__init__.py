@@ -47,7 +47,8 @@ beyond second-order theory or breaking at the paddle gives a
 :class:`~watersim.SceneError` naming the field (``depth``, ``beach.toe``, ``wave.height``,
 ``paddle.order``, ``gauges[2].x``, ...).
 
-Modules, one concern each: :mod:`.bed` (beaches, damping zone), :mod:`.waves`, :mod:`.paddles`
+Modules, one concern each: :mod:`.bed` (beaches, damping zone), :mod:`.structures`,
+:mod:`.waves`, :mod:`.paddles`
 (wave-makers and the resolved paddle law), :mod:`.gauges`, :mod:`.scene` (:class:`Flume`,
 :class:`FlumeScene`), :mod:`.records` (gauge records, CSV), :mod:`.simulation` and
 :mod:`.analyse`; :mod:`.lattice` holds the particle lattice's arithmetic, :mod:`.checks` the
@@ -63,6 +64,7 @@ from .paddles import RAMPS, Flap, Piston, flap_height_to_stroke_hinged
 from .records import FlumeGauges, VelocityRecord
 from .scene import CHOICES, TAGS, Flume, FlumeScene
 from .simulation import FlumeSimulation
+from .structures import BoxStructure, ProfileStructure
 from .waves import (
     SPECTRA,
     FocusedWave,
@@ -78,6 +80,7 @@ __all__ = [
     "RAMPS",
     "SPECTRA",
     "TAGS",
+    "BoxStructure",
     "DampingZone",
     "Flap",
     "Flume",
@@ -89,6 +92,7 @@ __all__ = [
     "MeshBeach",
     "Piston",
     "PlaneBeach",
+    "ProfileStructure",
     "ProfileBeach",
     "RegularWave",
     "SolitaryWave",

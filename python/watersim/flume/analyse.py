@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 from .. import analysis as an
 from .. import wave_theory as wt
+from .gauges import ForceGauge
 from .paddles import PaddleLaw
 from .waves import IrregularWave, RegularWave
 
@@ -32,6 +33,8 @@ phase it starts at (fewer periods may hold a single wave, or none)."""
 
 MIN_WAVES = 2
 """Whole waves a gauge's statistics need at the least."""
+
+FORCE_UNIT = "N (N/m in 2D)"
 
 UNITS: dict[str, str] = {
     "x": "m", "y": "m", "still_depth": "m", "still_water_depth": "m", "window": "s",
@@ -52,6 +55,9 @@ UNITS: dict[str, str] = {
     "trough_level": "m", "undertow": "m/s", "undertow_over_sqrt_gD": "1",
     "flux_below_trough": "m^2/s", "flux_above_trough": "m^2/s", "mean_u": "m/s", "z": "m",
     "celerity": "m/s", "shallow_water_speed": "m/s", "ratio": "1",
+    "Fx_max": FORCE_UNIT, "Fx_min": FORCE_UNIT, "Fz_max": FORCE_UNIT, "Fz_min": FORCE_UNIT,
+    "Fx_mean": FORCE_UNIT, "Fz_mean": FORCE_UNIT, "Fx_significant": FORCE_UNIT,
+    "impulse": "N s (N s/m in 2D)", "impulse_start": "s", "impulse_end": "s",
 }
 """The units of analysis.json's quantities, by key wherever it appears ("1": a pure number;
 elevations and levels are relative to the still-water level, times from the start of the run)."""
@@ -227,6 +233,8 @@ def analyse_flume(
     - ``reflection`` (regular or irregular waves, 2-3 gauges over the flat floor between the
       paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``,
       ``gauges``, ``coefficient``, ``incident_amplitude``, ``reflected_amplitude``.
+    - ``forces`` (force gauges): ``name``, ``structure`` and, over the whole record, the peaks,
+      means, impulse and significant force of :func:`watersim.analysis.load_statistics`.
     - ``notes``: what could not be computed and why.
     - ``units``: the unit of each quantity by key (:data:`UNITS`).
     """
@@ -263,7 +271,23 @@ def analyse_flume(
         if setup.flume.beach is not None:
             result["crest_celerity"] = _crest_celerity(run)
         result["mean_level_near_paddle"] = _mean_level_near_paddle(run)
+    if forces := _forces(run):
+        result["forces"] = forces
     return result
+
+
+def _forces(run: _Run) -> list[dict[str, Any]]:
+    """Per force gauge with at least two samples: its load statistics (see ``forces``)."""
+    gauges: dict[str, Any] = dict(zip(run.setup._gauge_names(), run.setup.gauges, strict=True))
+    out: list[dict[str, Any]] = []
+    for name, t, force, _ in ForceGauge.records_of(run.gauges):
+        if t.size < 2:
+            run.notes.append(f"forces: gauge {name!r} has fewer than two samples")
+            continue
+        stats = an.load_statistics(t, force[:, 0], force[:, -1])
+        out.append({"name": name, "structure": gauges[name].structure,
+                    **{k: _f(v) for k, v in stats.items()}, "n_waves": stats["n_waves"]})
+    return out
 
 
 def _gauge_waves(run: _Run, j: int) -> tuple[dict[str, Any], float | None]:

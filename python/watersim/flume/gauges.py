@@ -1,4 +1,5 @@
-"""The gauges of a flume: surface elevation, velocity probes and windows, pressure, run-up."""
+"""The gauges of a flume: surface elevation, velocity probes and windows, pressure, run-up,
+force on a structure."""
 
 from __future__ import annotations
 
@@ -27,6 +28,7 @@ __all__ = [
     "GAUGE_TYPES",
     "SURFACE_METHODS",
     "ElevationGauge",
+    "ForceGauge",
     "PressureGauge",
     "RunupGauge",
     "VelocityProbe",
@@ -179,6 +181,15 @@ class _Gauge:
             gauges.records[str(raw["name"])] = {
                 key: np.asarray(value) for key, value in raw.items() if key not in ("type", "name")
             }
+
+    @classmethod
+    def _records_by_name(cls, gauges: FlumeGauges) -> Iterator[tuple[str, Any,
+                                                                      dict[str, Any]]]:
+        """Per gauge of this kind, in scene order: its name, ``t`` (n,) [s] and its record."""
+        for spec in gauges.setup._gauge_specs():
+            if spec["type"] == cls.TAG:
+                record = gauges.records[spec["name"]]
+                yield spec["name"], np.asarray(record["t"], dtype=np.float64), record
 
     @classmethod
     def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
@@ -495,14 +506,10 @@ class PressureGauge(_GaugeAtPoints):
     def _records(cls, gauges: FlumeGauges) -> Iterator[tuple[str, Any, Any, Any, Any]]:
         """Per pressure gauge: its name, ``t`` (n,), ``points`` (p, dim), the pressure (n, p)
         with NaN where dry, and the kernel sum (n, p)."""
-        for spec in gauges.setup._gauge_specs():
-            if spec["type"] != cls.TAG:
-                continue
-            record = gauges.records[spec["name"]]
-            t = np.asarray(record["t"], dtype=np.float64)
+        for name, t, record in cls._records_by_name(gauges):
             kernel_sum = np.asarray(record["kernel_sum"], dtype=np.float64).reshape(t.size, -1)
             pressure = np.asarray(record["pressure"], dtype=np.float64).reshape(t.size, -1)
-            yield (spec["name"], t, np.asarray(record["points"], dtype=np.float64),
+            yield (name, t, np.asarray(record["points"], dtype=np.float64),
                    np.where(kernel_sum < DRY_KERNEL_SUM, np.nan, pressure), kernel_sum)
 
     @classmethod
@@ -598,7 +605,115 @@ class RunupGauge(_Gauge):
         return [(csv_column(gauges.runup_name, "m"), gauges.runup_t, gauges.runup)]
 
 
-Gauge = ElevationGauge | VelocityProbe | VelocityWindow | PressureGauge
+@dataclass(frozen=True)
+class ForceGauge(_Gauge):
+    """Force and moment of the fluid on a structure (a :class:`BoxStructure` or
+    :class:`ProfileStructure` of the scene, by name): the sum over the structure's wall
+    particles of the opposites of their fluid neighbours' pair forces (pressure and viscosity),
+    and its moment about ``point``. In 2D per unit width: N/m and N m/m, the moment about the
+    y axis (``M_y = r_z F_x - r_x F_z``); in 3D N and N m about x, y and z.
+
+    Its record is ``FlumeGauges.records[name]``: ``t`` (n,) [s], ``force`` (n, dim) and
+    ``moment`` (n,) in 2D or (n, 3) in 3D.
+
+    Attributes:
+        structure: the name of the structure measured.
+        point: the point the moment is taken about [m], (x, z) or (x, y, z).
+        name: record name; default the structure's name.
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    structure: str
+    point: tuple[float, ...]
+    name: str | None = None
+    interval: float | None = None
+
+    TAG: ClassVar[str] = "force"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
+    def __post_init__(self) -> None:
+        _optional_name("gauge.structure", self.structure)
+        if self.structure is None:
+            raise SceneError("gauge.structure: a force gauge needs the name of its structure")
+        point = _finite_tuple("gauge.point", self.point, 2)
+        if len(point) not in (2, 3):
+            raise SceneError("gauge.point: needs 2 (x, z) or 3 (x, y, z) coordinates")
+        _set(self, "point", point)
+        self._check_name_and_interval("gauge")
+
+    def default_name(self, scene: FlumeScene, index: int) -> str:
+        """The structure's name."""
+        return self.structure
+
+    def along_x(self) -> list[float]:
+        return []
+
+    def check_in(self, scene: FlumeScene, label: str) -> None:
+        """Refuse a structure the scene does not have, or a point of the wrong dimension."""
+        if scene.obstacle_index(self.structure) is None:
+            known = ", ".join(repr(s.name) for s in scene.structures) or "none"
+            raise SceneError(f"{label}.structure: no structure named {self.structure!r} in the "
+                             f"scene's structures ({known})")
+        if len(self.point) != scene.dim:
+            raise SceneError(f"{label}.point: needs {scene.dim} coordinates in {scene.dim}D, "
+                             f"got {len(self.point)}")
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        return {"type": self.TAG, "name": name, "obstacle": scene.obstacle_index(self.structure),
+                "point": list(self.point), "interval": interval}
+
+    @classmethod
+    def records_of(cls, gauges: FlumeGauges) -> Iterator[tuple[str, Any, Any, Any]]:
+        """Per force gauge: its name, ``t`` (n,), ``force`` (n, dim) and ``moment`` (n, 1) in
+        2D, (n, 3) in 3D."""
+        for name, t, record in cls._records_by_name(gauges):
+            force = np.asarray(record["force"], dtype=np.float64).reshape(t.size, -1)
+            moment = np.asarray(record["moment"], dtype=np.float64).reshape(t.size, -1)
+            yield name, t, force, moment
+
+    @staticmethod
+    def units(dim: int) -> tuple[str, str]:
+        """The force's and the moment's units (per unit width in 2D)."""
+        return ("N/m", "N m/m") if dim == 2 else ("N", "N m")
+
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """Per gauge ``force_NAME`` (time_NAME, component) [N, N/m in 2D] and ``moment_NAME``
+        (time_NAME, moment_axis) [N m, N m/m in 2D]."""
+        dim = gauges.setup.dim
+        force_unit, moment_unit = cls.units(dim)
+        axes = ["y"] if dim == 2 else ["x", "y", "z"]
+        data: dict[str, Any] = {}
+        coords: dict[str, Any] = {}
+        for name, t, force, moment in cls.records_of(gauges):
+            tname = f"time_{name}"
+            coords[tname] = (tname, t, {"units": "s"})
+            data[f"force_{name}"] = ((tname, "component"), force,
+                                     {"units": force_unit, "long_name": "fluid force"})
+            coords[f"moment_axis_{name}"] = (f"moment_axis_{name}", axes)
+            data[f"moment_{name}"] = ((tname, f"moment_axis_{name}"), moment,
+                                      {"units": moment_unit, "long_name": "fluid moment"})
+        return data, coords
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """Per force gauge its force components and moment (gauge ``box`` in 2D:
+        ``box_Fx_N_per_m``, ``box_Fz_N_per_m``, ``box_My_N_m_per_m``)."""
+        dim = gauges.setup.dim
+        force_unit, moment_unit = (u.replace("/", "_per_").replace(" ", "_")
+                                   for u in cls.units(dim))
+        axes = ("x", "z") if dim == 2 else ("x", "y", "z")
+        moment_axes = ("y",) if dim == 2 else ("x", "y", "z")
+        series: list[Series] = []
+        for name, t, force, moment in cls.records_of(gauges):
+            series += [(csv_column(f"{name}_F{a}", force_unit), t, force[:, k])
+                       for k, a in enumerate(axes)]
+            series += [(csv_column(f"{name}_M{a}", moment_unit), t, moment[:, k])
+                       for k, a in enumerate(moment_axes)]
+        return series
+
+
+Gauge = ElevationGauge | VelocityProbe | VelocityWindow | PressureGauge | ForceGauge
 """The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
 
 SCENE_GAUGE_TYPES: tuple[type[_Gauge], ...] = typing.get_args(Gauge)

@@ -23,10 +23,13 @@ from .gauges import RUNUP_OFFSET_DP, SCENE_GAUGE_TYPES, Gauge, RunupGauge
 from .lattice import MAX_PARTICLES, _lattice_error, _whole, lattice_dp
 from .paddles import PADDLE_TYPES, Paddle, PaddleLaw, Piston
 from .simulation import FlumeSimulation
+from .structures import STRUCTURE_TYPES, Structure
 from .waves import WAVE_TYPES, Wave
 
-MODEL_TYPES: tuple[type, ...] = (*BEACH_TYPES, *WAVE_TYPES, *PADDLE_TYPES, *SCENE_GAUGE_TYPES)
-"""The classes a field of a flume scene takes one of (beach, wave, paddle, gauges)."""
+MODEL_TYPES: tuple[type, ...] = (*BEACH_TYPES, *WAVE_TYPES, *PADDLE_TYPES, *SCENE_GAUGE_TYPES,
+                                  *STRUCTURE_TYPES)
+"""The classes a field of a flume scene takes one of (beach, wave, paddle, gauges,
+structures)."""
 
 TAGS: dict[type, str] = {cls: cls.TAG for cls in MODEL_TYPES}  # type: ignore[attr-defined]
 """Each model class's ``type`` in a scene file (the class's ``TAG``)."""
@@ -151,6 +154,8 @@ class FlumeScene(SceneBuilder):
         paddle: :class:`Piston` (default) or :class:`Flap`.
         gauges: gauge objects, of any class of :data:`~watersim.flume.gauges.Gauge` (every
             gauge but the run-up gauge).
+        structures: fixed solid bodies in the flume, each named (a :class:`BoxStructure` or
+            a :class:`ProfileStructure`): the core's obstacles after the beach.
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
@@ -171,6 +176,7 @@ class FlumeScene(SceneBuilder):
     wave: Wave
     paddle: Paddle = dataclasses.field(default_factory=Piston)
     gauges: Sequence[Gauge] = ()
+    structures: Sequence[Structure] = ()
     runup: bool | RunupGauge | None = None
     sample_interval: float | None = None
 
@@ -181,20 +187,12 @@ class FlumeScene(SceneBuilder):
             raise SceneError(f"wave: expected {expected(WAVE_TYPES)}, got {self.wave!r}")
         if not isinstance(self.paddle, PADDLE_TYPES):
             raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
-        if isinstance(self.gauges, SCENE_GAUGE_TYPES):
-            _set(self, "gauges", (self.gauges,))
-        try:
-            gauges = tuple(self.gauges)
-        except TypeError:
-            raise SceneError(
-                f"gauges: expected a sequence of gauges, got {self.gauges!r}"
-            ) from None
-        for i, g in enumerate(gauges):
-            if not isinstance(g, SCENE_GAUGE_TYPES):
-                raise SceneError(
-                    f"gauges[{i}]: expected {expected(SCENE_GAUGE_TYPES)}, got {g!r}"
-                )
-        _set(self, "gauges", gauges)
+        self._as_tuple_of("gauges", SCENE_GAUGE_TYPES)
+        names: set[str] = set()
+        for i, s in enumerate(self._as_tuple_of("structures", STRUCTURE_TYPES)):
+            if s.name in names:
+                raise SceneError(f"structures[{i}].name: duplicate structure name {s.name!r}")
+            names.add(s.name)
         if self.runup is not None and not isinstance(self.runup, (bool, RunupGauge)):
             raise SceneError(f"runup: expected True, False, None or a RunupGauge, got "
                              f"{self.runup!r}")
@@ -224,6 +222,31 @@ class FlumeScene(SceneBuilder):
         self.wave.warn(self.paddle, self.flume.depth, self.g)
 
     # -- checks ---------------------------------------------------------------------------------
+
+    def _as_tuple_of(self, field: str, classes: tuple[type, ...]) -> tuple[Any, ...]:
+        """The models of ``field`` (one of them, or a sequence) as a tuple, each one of
+        ``classes``; set on the scene and returned."""
+        value = getattr(self, field)
+        if isinstance(value, classes):
+            value = (value,)
+        try:
+            models = tuple(value)
+        except TypeError:
+            raise SceneError(f"{field}: expected a sequence of {field}, got {value!r}") from None
+        for i, model in enumerate(models):
+            if not isinstance(model, classes):
+                raise SceneError(f"{field}[{i}]: expected {expected(classes)}, got {model!r}")
+        _set(self, field, models)
+        return models
+
+    def obstacle_index(self, structure: str) -> int | None:
+        """The core's index of the obstacle of the structure named ``structure`` (the beach,
+        if any, is obstacle 0), None if there is no such structure."""
+        first = 0 if self.flume.beach is None else 1
+        for i, s in enumerate(self.structures):
+            if s.name == structure:
+                return first + i
+        return None
 
     def _check_wave_and_paddle(self) -> None:
         """Combinations of wave and paddle the generation theory does not cover."""
@@ -291,6 +314,8 @@ class FlumeScene(SceneBuilder):
                 raise SceneError(
                     f"damping.length: the zone covers the whole flume (it starts at x = {x0:g} m)"
                 )
+        for i, structure in enumerate(self.structures):
+            structure.check_in(self, f"structures[{i}]")
         names: set[str] = set()
         for i, (g, name) in enumerate(zip(self.gauges, self._gauge_names(), strict=True)):
             g.check_in(self, f"gauges[{i}]")
@@ -640,6 +665,7 @@ class FlumeScene(SceneBuilder):
         obstacles: list[dict[str, Any]] = []
         if flume.beach is not None:
             obstacles.append(flume.beach.to_core(self.bed_profile))
+        obstacles.extend(s.to_core(self) for s in self.structures)
         # the surface read two dp in front of the face: clear of the paddle's own particles
         probe = 2.0 * float(self.dp) if self.absorbs else None  # type: ignore[arg-type]
         paddle = self.paddle.to_core(self.law, flume.depth, probe, self.g)
