@@ -68,7 +68,14 @@ def test_solitary_target_peaks_at_the_wave_height() -> None:
     target = law.absorption_target
     assert target is not None and target["type"] == "table"
     assert max(target["x"]) == pytest.approx(0.06, rel=0.02)
-    assert law.absorption_gain == pytest.approx(math.sqrt(G / 0.3))
+    # the gain takes back the whole wave: passing a fixed probe, the returning wave's volume
+    # V = d S (Goring's paddle ends S forward) gives int eta dt = V / c, which moves the
+    # paddle back by S
+    c = float(wt.solitary_celerity(0.06, 0.3))
+    assert law.absorption_gain == pytest.approx(c / 0.3)
+    # the drift gives the volume back as a long wave below 1 % of H
+    passing = float(np.trapezoid(target["x"], target["t"]))
+    assert law.absorption_drift_time == pytest.approx(200.0 * passing / 0.06)
 
 
 def test_irregular_target_has_every_component() -> None:

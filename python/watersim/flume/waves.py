@@ -32,6 +32,14 @@ SOLITARY_MAX_H_OVER_D = 0.83
 """Highest solitary wave, H/d about 0.83 (Longuet-Higgins & Fenton 1974): a taller one does not
 exist, and Goring's paddle motion for it is meaningless."""
 
+SOLITARY_DRIFT_SPANS = 200.0
+"""The absorber's drift time for a solitary wave, in spans ``int eta dt / H`` of the wave at
+the paddle (0.67 s at H/d 0.2). A periodic wave has no mean, but a solitary wave carries its
+volume: the drift term and the removal of the difference's running mean (``absorption.rs``) each
+give the absorbed volume back at about ``V / (d tau)``, a long wave of ``(span / tau) H`` at the
+paddle, so ``tau`` = 200 spans keeps the two below 1 % of H. The paddle stays back by about
+``V / d`` meanwhile (the flume keeps the wave's volume out)."""
+
 
 class _SpectralWave:
     """Second-order generation of a spectral wave (irregular, focused): a piston's."""
@@ -500,10 +508,14 @@ class SolitaryWave(_Wave):
             duration=duration,
             absorption_target={"type": "table", "t": (t + self.delay).tolist(),
                                "x": eta.tolist()},
-            # linear long waves: U = sqrt(g/d) eta
-            absorption_gain=math.sqrt(g / depth),
+            # Goring's U = c eta / (d + eta) about still water: a returning solitary wave's
+            # volume V passes the probe as int eta dt = V / c, so the gain c / d moves the
+            # paddle back by V / d, the whole wave (the linear sqrt(g/d) takes sqrt(d/(d+H)) of
+            # it, 91 % at H/d 0.2, and leaves the rest in the flume)
+            absorption_gain=c / depth,
             absorption_celerity=c,
-            absorption_drift_time=10.0 * duration,
+            absorption_drift_time=(SOLITARY_DRIFT_SPANS * float(np.trapezoid(eta, t))
+                                   / self.height),
         )
 
     def default_sample_interval(self, depth: float, g: float) -> float:
