@@ -136,12 +136,14 @@ def test_the_absorber_targets_the_wave_at_its_probe_and_delays_the_return(paddle
     k = float(wt.wavenumber(1.26, 0.3))
     loop = 1.0 / (2.0 * math.cos(k * x) - near)
     assert 0.0 < cmath.phase(loop) < 2.0 * k * x
-    # with the drift term's and the mean removal's leads (10 periods: 0.016 rad each)
-    drift = 1.0 / (10.0 * 2.0 * math.pi)
-    delay = cmath.phase(loop) + 2.0 * math.atan(drift)
+    # with the drift term's lead (10 periods: 0.016 rad) and the mean removal's (2 periods:
+    # 0.079 rad)
+    drift, mean = 1.0 / (10.0 * 2.0 * math.pi), 1.0 / (2.0 * 2.0 * math.pi)
+    assert absorption["mean_time"] == pytest.approx(2.0 * 1.26)
+    delay = cmath.phase(loop) + math.atan(drift) + math.atan(mean)
     assert math.atan(omega * absorption["lag_time"]) == pytest.approx(delay)
-    assert absorption["gain"] == pytest.approx(
-        scene.law.absorption_gain * abs(loop) * (1.0 + drift**2) / math.cos(delay))
+    assert absorption["gain"] == pytest.approx(scene.law.absorption_gain * abs(loop) * math.sqrt(
+        (1.0 + drift**2) * (1.0 + mean**2)) / math.cos(delay))
 
 
 def test_bound_harmonics_and_a_solitary_wave_travel_with_their_wave() -> None:

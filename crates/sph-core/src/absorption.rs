@@ -36,10 +36,15 @@
 //! it reads the crests a little further out than the troughs. Integrated, a steady difference
 //! `e_0` moves the paddle's mean position by `-G tau e_0` (a flap's `G tau` of a hundred makes a
 //! millimetre of it a decimetre, more than its stroke, and the paddle's wave then leaves from
-//! the wrong place). The difference's running mean `m` (`tau dm/dt = (eta_M - eta_T) - m`) is
+//! the wrong place). The difference's running mean `m` (`tau_m dm/dt = (eta_M - eta_T) - m`) is
 //! therefore taken off:
 //!
 //! `dX_c/dt = -G (e - m) - X_c / tau`
+//!
+//! The mean removal and the drift term in cascade are a second-order high-pass from the
+//! difference to `X_c`: a slow rise of the difference at the rate `r` (the settling of the
+//! particles) holds the paddle back by `G tau_m tau r` as long as it lasts, so the mean's time
+//! constant `tau_m` may be shorter than the drift's (a few periods rather than ten).
 //!
 //! The solver evaluates it once per step before moving the paddle: `eta_M` from the fluid at
 //! the start of the step, `e` updated over the step just done as if `eta_M - eta_T` had been
@@ -70,6 +75,9 @@ pub struct Absorption {
     pub drift_time: Real,
     /// Time constant `T_l` of the lag applied to `eta_M - eta_T` [s] (0: none).
     pub lag_time: Real,
+    /// Time constant `tau_m` of the running mean taken off the difference [s] (None: `tau`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_time: Option<Real>,
 }
 
 /// The correction's state: displacement `X_c` [m] and its rate [m/s] over the current step,
@@ -98,12 +106,14 @@ struct Fields {
     drift_time: Real,
     #[serde(default)]
     lag_time: Real,
+    #[serde(default)]
+    mean_time: Option<Real>,
 }
 
 impl TryFrom<Fields> for Absorption {
     type Error = Error;
     fn try_from(f: Fields) -> Result<Self> {
-        let a = Absorption { target: f.target, gain: f.gain, probe_offset: f.probe_offset, drift_time: f.drift_time, lag_time: f.lag_time };
+        let a = Absorption { target: f.target, gain: f.gain, probe_offset: f.probe_offset, drift_time: f.drift_time, lag_time: f.lag_time, mean_time: f.mean_time };
         a.validate("").map(|()| a)
     }
 }
@@ -122,6 +132,9 @@ impl Absorption {
         if !(self.lag_time.is_finite() && self.lag_time >= 0.0) {
             return Err(Error::invalid(under("lag_time"), format!("must be zero or a positive number, got {}", self.lag_time)));
         }
+        if let Some(value) = self.mean_time.filter(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(Error::invalid(under("mean_time"), format!("must be a positive number, got {value}")));
+        }
         Ok(())
     }
 
@@ -133,7 +146,7 @@ impl Absorption {
         // each filter's exact solution over the step for an input held at its present value
         let relax = |previous: Real, time: Real| reflected + (previous - reflected) * (-(t - state.since) / time).exp();
         let lagged = if self.lag_time > 0.0 { relax(state.lagged, self.lag_time) } else { reflected };
-        let mean = relax(state.mean, self.drift_time);
+        let mean = relax(state.mean, self.mean_time.unwrap_or(self.drift_time));
         AbsorberState { offset, rate: -self.gain * (lagged - mean) - offset / self.drift_time, since: t, lagged, mean }
     }
 }
@@ -157,6 +170,7 @@ mod tests {
             probe_offset: 0.05,
             drift_time: 10.0,
             lag_time: 0.0,
+            mean_time: None,
         }
     }
 
@@ -217,6 +231,28 @@ mod tests {
     }
 
     #[test]
+    fn a_slow_rise_holds_the_paddle_back_by_g_tau_m_tau_times_its_rate() {
+        // the difference rising at r (a settling surface): once the filters have caught up,
+        // X_c = -G tau_m tau r, less with a shorter mean time
+        let rate = 1e-5;
+        let held = |mean_time: Option<Real>| {
+            let mut a = absorption();
+            a.mean_time = mean_time;
+            let (mut s, dt) = (AbsorberState::default(), 0.01);
+            for i in 0..20_000 {
+                let t = i as Real * dt;
+                s = a.advance(s, t, Some(a.target.eval(t).0 + rate * t));
+            }
+            let tau_m = mean_time.unwrap_or(a.drift_time);
+            (s.offset, -a.gain * tau_m * a.drift_time * rate)
+        };
+        for mean_time in [None, Some(2.0)] {
+            let (offset, expected) = held(mean_time);
+            assert!((offset / expected - 1.0).abs() < 0.02, "{offset} {expected}");
+        }
+    }
+
+    #[test]
     fn the_lag_delays_the_difference_by_its_phase() {
         // a difference sin(omega t) through the lag: in the steady state -G A sin(omega t - phi)
         // with A = 1 / sqrt(1 + (omega T_l)^2), phi = atan(omega T_l)
@@ -247,5 +283,8 @@ mod tests {
         let mut a = absorption();
         a.lag_time = -1.0;
         assert!(a.validate("paddle.absorption").unwrap_err().to_string().contains("lag_time"));
+        let mut a = absorption();
+        a.mean_time = Some(0.0);
+        assert!(a.validate("paddle.absorption").unwrap_err().to_string().contains("mean_time"));
     }
 }

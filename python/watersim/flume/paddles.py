@@ -50,6 +50,11 @@ class PaddleLaw:
     """The speed [m/s] at which a tabulated target (a solitary wave's) travels."""
     absorption_drift_time: float | None = None
     """Time constant of the absorption's drift correction [s]: ten (peak) periods."""
+    absorption_mean_time: float | None = None
+    """Time constant of the running mean taken off the absorber's difference [s]: two (peak)
+    periods, so that a slow rise of the surface (the particles' settling) holds the paddle back
+    five times less than over the drift time (``absorption.rs``); None: the drift time (a
+    solitary wave, whose mean is its own)."""
 
     def travel(self) -> float:
         """Peak-to-peak travel of the paddle [m]: a table's range; a harmonic law's range over
@@ -134,6 +139,7 @@ class _Paddle:
             period=period,
             absorption_target=None if absorption_target is None else harmonic(absorption_target),
             absorption_drift_time=10.0 * period,
+            absorption_mean_time=2.0 * period,
             **extra,
         )
 
@@ -194,15 +200,20 @@ class _Paddle:
             k = float(wt.wavenumber_from_omega(omega, depth, g))
             loop = 1.0 / (2.0 * math.cos(k * probe_offset)
                           - self.near_field(omega, depth, probe_offset, g))
-            # the core's drift term and the removal of the difference's mean (both over the
-            # drift time) each lead by atan(1 / (omega tau)) and keep omega tau / sqrt(1 +
-            # (omega tau)^2) of the amplitude: the lag and the gain make up for them too
-            drift = 1.0 / (omega * float(law.absorption_drift_time or math.inf))
-            delay = max(0.0, cmath.phase(loop) + 2.0 * math.atan(drift))  # a lag cannot lead
+            # the core's drift term and the removal of the difference's mean each lead by
+            # atan(1 / (omega tau)) and keep omega tau / sqrt(1 + (omega tau)^2) of the
+            # amplitude (tau their time constants): the lag and the gain make up for them too
+            leads = [1.0 / (omega * float(tau or math.inf))
+                     for tau in (law.absorption_drift_time,
+                                 law.absorption_mean_time or law.absorption_drift_time)]
+            delay = max(0.0, cmath.phase(loop) + sum(map(math.atan, leads)))  # a lag cannot lead
             lag = math.tan(delay) / omega
-            gain *= abs(loop) * (1.0 + drift * drift) / math.cos(delay)
-        return {"target": target, "gain": gain, "probe_offset": probe_offset,
+            gain *= abs(loop) * math.prod(math.hypot(1.0, x) for x in leads) / math.cos(delay)
+        core = {"target": target, "gain": gain, "probe_offset": probe_offset,
                 "drift_time": law.absorption_drift_time, "lag_time": lag}
+        if law.absorption_mean_time is not None:
+            core["mean_time"] = law.absorption_mean_time
+        return core
 
     def near_field(self, omega: float, depth: float, x: float, g: float) -> complex:
         """This paddle's linear elevation ``x`` [m] in front of its face at ``omega`` over its
