@@ -84,7 +84,7 @@ from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdo
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
 from .scenes import DamBreak, Tank
-from .simulation import Simulation
+from .simulation import Simulation, check_interval_resolved
 from .stress import add_parser as add_stress_parser
 from .validation import sweep as _validation
 
@@ -332,6 +332,13 @@ def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, floa
     snapshot_every = _positive_option("--snapshot-every", args.snapshot_every)
     if snapshot_every is None:
         snapshot_every = scene.output.snapshot_every
+    until = float(scene.builder.until)  # type: ignore[arg-type]
+    for name, every in (("--sample-every", args.sample_every), ("--snapshot-every", snapshot_every)):
+        if every is not None:
+            try:
+                check_interval_resolved(name, every, until)
+            except ValueError as e:
+                raise CliError(str(e)) from None
     if args.save_last_good:  # checked now: the run must not end in a save that cannot be done
         check_output_file(args.save_last_good)
     if args.progress is None:

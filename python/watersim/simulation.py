@@ -294,6 +294,7 @@ class Simulation:
         for every, _ in schedule:
             if not (every > 0.0 and math.isfinite(every)):
                 raise ValueError(f"callback_every: must be a positive number, got {every!r}")
+            check_interval_resolved("callback_every", every, until)
         bar = _Progress(self, until) if progress else None
         try:
             t0 = self._sim.time if origin is None else float(origin)
@@ -346,6 +347,27 @@ class Simulation:
         while self._sim.time < target:
             self._sim.run(min(target, self._sim.time + bar.chunk))
             bar.update()
+
+
+STOP_RESOLUTION = 1e-9
+"""The shortest interval between a run's stops, as a fraction of its end time (see
+:func:`check_interval_resolved`)."""
+
+
+def check_interval_resolved(name: str, every: float, until: float) -> None:
+    """Refuses an interval between a run's stops (callbacks, samples, snapshots) shorter than
+    :data:`STOP_RESOLUTION` times the run's end time ``until``: t has 16 significant digits, so
+    the sample times ``t0 + k * every`` stay 7 digits apart, and a run stops at most 1e9 times
+    (an interval below the resolution of t, 1e-300, would make :meth:`Simulation.run_schedule`
+    count its stops one by one for ever).
+
+    Raises:
+        ValueError: the message names ``name``.
+    """
+    floor = STOP_RESOLUTION * abs(until)
+    if every < floor:
+        raise ValueError(f"{name}: {every:g} s is below {floor:g} s, {STOP_RESOLUTION:g} of the "
+                         f"run's end time {until:g} s")
 
 
 class _Progress:

@@ -20,6 +20,12 @@ pub enum Error {
         position: Vec<f64>,
         message: String,
     },
+
+    /// The run was asked to stop (its stop flag set, by the binding on Ctrl-C or SIGTERM): it
+    /// stopped between two steps, and the state is the one after `step`, complete and
+    /// consistent, so a checkpoint of it resumes the run bit for bit.
+    #[error("run interrupted after step {step} (t = {time} s)")]
+    Interrupted { step: u64, time: f64 },
 }
 
 /// Which stability monitor fired.
@@ -31,6 +37,9 @@ pub enum InstabilityKind {
     DensityOutOfRange,
     /// The time step fell below its floor.
     TimeStepCollapse,
+    /// The time step came out NaN or infinite (a NaN acceleration or sound speed, or nothing
+    /// left to limit it), not a small step: told apart from [`Self::TimeStepCollapse`].
+    NonFiniteTimeStep,
     /// More fluid particles left the domain than the scene allows.
     OutOfDomain,
     /// Mechanical energy grew without forcing.
@@ -49,6 +58,7 @@ impl InstabilityKind {
             InstabilityKind::NonFinite => "non_finite",
             InstabilityKind::DensityOutOfRange => "density_out_of_range",
             InstabilityKind::TimeStepCollapse => "time_step_collapse",
+            InstabilityKind::NonFiniteTimeStep => "non_finite_time_step",
             InstabilityKind::OutOfDomain => "out_of_domain",
             InstabilityKind::EnergyGrowth => "energy_growth",
         }

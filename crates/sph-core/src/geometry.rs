@@ -134,10 +134,18 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
         hi[k] = if k == dim - 1 { n } else { n + layers };
     }
     let estimated: i64 = (0..dim).map(|k| hi[k] - lo[k]).product();
-    if estimated > 2_000_000_000 {
+    const LATTICE_LIMIT: i64 = 2_000_000_000;
+    if estimated > LATTICE_LIMIT {
+        // the tank alone fits: the wall layers (given, or from the kernel's support) make it too large
+        let tank_only: i64 = (0..dim).map(|k| (hi[k] - if k == dim - 1 { 0 } else { layers }).max(1)).product();
+        let field = match (tank_only <= LATTICE_LIMIT, scene.boundary_layers.is_some()) {
+            (false, _) => "dp",
+            (true, true) => "boundary_layers",
+            (true, false) => "coefh",
+        };
         return Err(Error::invalid(
-            "dp",
-            format!("dp = {dp} would need a lattice of {estimated} points around the tank; refusing"),
+            field,
+            format!("dp = {dp:e} m and {layers} wall layers would need a lattice of {estimated:e} points around the tank; refusing"),
         ));
     }
 

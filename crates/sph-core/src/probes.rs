@@ -493,7 +493,9 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
             }
             rec.t.push(t);
             let interval = spec.interval();
-            while rec.next_time <= t {
+            // bounded: the build keeps `interval` above the time step floor and a restore keeps
+            // `next_time` finite; past the resolution of t the gauge samples every step
+            while rec.next_time <= t && rec.next_time + interval > rec.next_time {
                 rec.next_time += interval;
             }
         }

@@ -5,8 +5,11 @@
 
 use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sph_core::{Error, Simulation as CoreSimulation};
@@ -22,6 +25,8 @@ create_exception!(
 fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
     match e {
         Error::InvalidScene { .. } => SceneError::new_err(e.to_string()),
+        // the stop flag is only set by `interruptible`, which raises the signal's own exception
+        Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         Error::Instability { kind, step, time, particle, ref position, ref message } => {
             let err = InstabilityError::new_err(e.to_string());
             let value = err.value(py);
@@ -69,6 +74,48 @@ fn view_1d<'py, T: numpy::Element>(owner: &Bound<'py, Simulation>, data: &[T]) -
     Ok(arr)
 }
 
+/// How often the calling thread looks for a pending signal while the core steps.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `work` on the core with the GIL released, on a thread of its own, while the calling
+/// thread (Python's main thread, the one that runs signal handlers) looks for pending signals
+/// every [`SIGNAL_POLL`]. A handler that raises (Ctrl-C's KeyboardInterrupt, the CLI's SIGTERM)
+/// sets the core's stop flag: the core stops before its next step, within one step of the
+/// signal, and the handler's exception is raised with the state whole after that step (a
+/// checkpoint of it resumes the run bit for bit).
+fn interruptible<W>(py: Python<'_>, inner: &mut Box<dyn CoreSimulation>, work: W) -> PyResult<()>
+where
+    W: FnOnce(&mut dyn CoreSimulation) -> Result<(), Error> + Send,
+{
+    let stop = inner.stop_flag();
+    stop.store(false, Ordering::Relaxed);
+    let caller = std::thread::current();
+    let (result, signal) = py.detach(|| {
+        std::thread::scope(|scope| {
+            let worker = scope.spawn(|| {
+                let result = work(inner.as_mut());
+                caller.unpark();
+                result
+            });
+            let mut signal = Ok(());
+            while !worker.is_finished() {
+                std::thread::park_timeout(SIGNAL_POLL);
+                if signal.is_ok() && !worker.is_finished() {
+                    signal = Python::attach(|py| py.check_signals());
+                    if signal.is_err() {
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                }
+            }
+            let result = worker.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (result, signal)
+        })
+    });
+    stop.store(false, Ordering::Relaxed);
+    signal?;
+    result.map_err(|e| to_py_err(py, e))
+}
+
 #[pymethods]
 impl Simulation {
     #[new]
@@ -112,18 +159,15 @@ impl Simulation {
     /// a pool of that many threads (built once, then reused).
     #[pyo3(signature = (n = 1, threads = None))]
     fn step(&mut self, py: Python<'_>, n: u64, threads: Option<usize>) -> PyResult<()> {
-        let inner = &mut self.inner;
-        let result = match threads {
-            None => py.detach(|| inner.step(n)),
-            Some(t) => py.detach(|| sph_core::on_threads(t, || inner.step(n)).and_then(|r| r)),
-        };
-        result.map_err(|e| to_py_err(py, e))
+        match threads {
+            None => interruptible(py, &mut self.inner, |inner| inner.step(n)),
+            Some(t) => interruptible(py, &mut self.inner, |inner| sph_core::on_threads(t, || inner.step(n)).and_then(|r| r)),
+        }
     }
 
     /// Advances until `time >= until` [s] (the GIL is released).
     fn run(&mut self, py: Python<'_>, until: f64) -> PyResult<()> {
-        let inner = &mut self.inner;
-        py.detach(|| inner.run_until(until)).map_err(|e| to_py_err(py, e))
+        interruptible(py, &mut self.inner, |inner| inner.run_until(until))
     }
 
     #[getter]

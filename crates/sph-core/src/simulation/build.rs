@@ -4,7 +4,7 @@
 use super::{History, Scratch, ShiftState, Solver, NEIGHBOUR_REACH};
 use crate::absorption::AbsorberState;
 use crate::boundary::wall_model;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::geometry;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -19,6 +19,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
         let c = Constants::new(&scene);
+        // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
+        let dt_floor = 1e-6 * c.h / c.c0;
+        check_gauge_intervals(&scene.gauges, dt_floor)?;
         let kernel = K::new(c.h, D::DIM);
         let geometry::Sampled { walls, wall_surface, fluid, fluid_surface, moving, moving_surface } =
             geometry::sample::<D>(&scene)?;
@@ -84,8 +87,6 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             grad: vec![D::V::ZERO; n_fluid],
             div: vec![0.0; n_fluid],
         });
-        // A step this small means the flow has blown up: 1e-6 of the initial acoustic step.
-        let dt_floor = 1e-6 * c.h / c.c0;
         // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
         let blocks = n.div_ceil(PERMUTE_BLOCK);
@@ -115,6 +116,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             domain: (lo, hi),
             n_excluded: 0,
             energy0: (0.0, 0.0),
+            stop: Default::default(),
         };
         solver.energy0 = solver.diagnostics().energy_baseline(solver.scene.tank.min[D::DIM - 1]);
         if let Some(paddle) = &solver.scene.paddle {
@@ -145,4 +147,24 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         Ok(solver)
     }
 
+}
+
+/// Refuses a gauge interval below the time step floor `dt_floor`. A gauge samples at most once
+/// per step and no step is shorter than the floor (below it the run stops as unstable), so a
+/// shorter interval asks for nothing more; and it bounds the gauges' catch-up of their next
+/// sample time (`ProbeView::sample_due`) to `dt / dt_floor` additions a step, where an interval
+/// below the resolution of t (1e-20) would never reach the present.
+fn check_gauge_intervals(gauges: &[GaugeSpec], dt_floor: Real) -> Result<()> {
+    for (i, g) in gauges.iter().enumerate() {
+        let interval = g.interval();
+        if interval < dt_floor {
+            return Err(Error::invalid(
+                format!("gauges[{i}].interval"),
+                format!(
+                    "{interval:e} s is below the time step floor {dt_floor:.3e} s (1e-6 h/c0; a gauge samples at most once a step)"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

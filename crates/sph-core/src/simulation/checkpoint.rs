@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real};
 use crate::neighbours::{GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
+use crate::particles::{KIND_EXCLUDED, KIND_FIXED, KIND_FLUID, KIND_MOVING};
 use crate::probes::GaugeRecord;
 
 /// Everything needed to continue a run exactly: the state in storage order, the integrator's
@@ -78,6 +79,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         expect("ids", c.ids.len(), n)?;
         expect("kinds", c.kinds.len(), n)?;
         expect("gauges", c.gauges.len(), self.gauges.len())?;
+        check_values(c, &self.gauges)?;
         match (self.absorber.is_some(), c.paddle_correction.is_some()) {
             (true, false) => return Err(Error::invalid("checkpoint.paddle_correction", "missing: this scene's paddle absorbs waves")),
             (false, true) => {
@@ -85,15 +87,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             }
             _ => {}
         }
-        // ids must be a permutation that keeps every particle in its group
-        let fs = self.p.fluid_start() as u32;
-        let nf = self.p.n_fixed as u32;
-        for (slot, &id) in c.ids.iter().enumerate() {
-            let group_of = |i: u32| if i < nf { 0 } else if i < fs { 1 } else { 2 };
-            if id as usize >= n || group_of(id) != group_of(slot as u32) {
-                return Err(Error::invalid("checkpoint.ids", format!("slot {slot} holds id {id} of another group")));
-            }
-        }
+        check_groups(c, self.p.n_fixed, self.p.fluid_start())?;
         if let History::Verlet { vel_prev, rho_prev, .. } = &mut self.history {
             expect("velocities_prev", c.velocities_prev.len(), nd)?;
             expect("densities_prev", c.densities_prev.len(), n)?;
@@ -123,4 +117,79 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         self.sort_group(GROUP_FLUID);
         Ok(())
     }
+}
+
+/// The checkpoint's scalars and gauge records: a time, step, energy baseline and gauge sample
+/// times a run can have reached (a NaN time would never end `run_until`, a non-finite
+/// `next_time` would never let its gauge's catch-up finish), and as many values as times.
+fn check_values(c: &Checkpoint, gauges: &[GaugeRecord]) -> Result<()> {
+    let field = |name: &str| format!("checkpoint.{name}");
+    if !(c.time.is_finite() && c.time >= 0.0) {
+        return Err(Error::invalid(field("time"), format!("must be finite and >= 0, got {}", c.time)));
+    }
+    if !(c.dt.is_finite() && c.dt >= 0.0) {
+        return Err(Error::invalid(field("dt"), format!("must be finite and >= 0, got {}", c.dt)));
+    }
+    if !(c.energy0.0.is_finite() && c.energy0.1.is_finite()) {
+        return Err(Error::invalid(field("energy0"), format!("must be finite, got {:?}", c.energy0)));
+    }
+    if let Some(p) = c.paddle_correction {
+        if ![p.0, p.1, p.2, p.3, p.4].iter().all(|x| x.is_finite()) {
+            return Err(Error::invalid(field("paddle_correction"), format!("must be finite, got {p:?}")));
+        }
+    }
+    for (i, (rec, own)) in c.gauges.iter().zip(gauges).enumerate() {
+        let f = |name: &str| field(&format!("gauges[{i}].{name}"));
+        if !rec.next_time.is_finite() {
+            return Err(Error::invalid(f("next_time"), format!("must be finite, got {}", rec.next_time)));
+        }
+        if let Some(t) = rec.t.iter().find(|t| !t.is_finite()) {
+            return Err(Error::invalid(f("t"), format!("sample times must be finite, got {t}")));
+        }
+        if rec.values.len() != rec.t.len() * own.width {
+            return Err(Error::invalid(
+                f("values"),
+                format!("has {} values for {} samples of {} values each", rec.values.len(), rec.t.len(), own.width),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The checkpoint's ids and kinds against the scene's groups (`n_fixed` fixed wall slots, then
+/// the paddle's up to `fluid_start`, then the fluid): the ids a permutation that keeps every
+/// particle in its group, each slot of its group's kind (fluid or excluded in the fluid), and
+/// the excluded count that of the excluded kinds.
+fn check_groups(c: &Checkpoint, n_fixed: usize, fluid_start: usize) -> Result<()> {
+    let n = c.ids.len();
+    let group_of = |i: usize| if i < n_fixed { 0 } else if i < fluid_start { 1 } else { 2 };
+    let mut seen = vec![false; n];
+    for (slot, &id) in c.ids.iter().enumerate() {
+        let id = id as usize;
+        if id >= n || group_of(id) != group_of(slot) {
+            return Err(Error::invalid("checkpoint.ids", format!("slot {slot} holds id {id} of another group")));
+        }
+        if std::mem::replace(&mut seen[id], true) {
+            return Err(Error::invalid("checkpoint.ids", format!("id {id} appears twice")));
+        }
+    }
+    let mut excluded = 0;
+    for (slot, &kind) in c.kinds.iter().enumerate() {
+        let allowed = match group_of(slot) {
+            0 => kind == KIND_FIXED,
+            1 => kind == KIND_MOVING,
+            _ => kind == KIND_FLUID || kind == KIND_EXCLUDED,
+        };
+        if !allowed {
+            return Err(Error::invalid("checkpoint.kinds", format!("slot {slot} has kind {kind}, not one of its group's")));
+        }
+        excluded += (kind == KIND_EXCLUDED) as usize;
+    }
+    if c.n_excluded != excluded {
+        return Err(Error::invalid(
+            "checkpoint.n_excluded",
+            format!("is {}, but {excluded} particles are marked excluded", c.n_excluded),
+        ));
+    }
+    Ok(())
 }

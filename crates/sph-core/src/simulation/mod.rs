@@ -7,6 +7,9 @@
 //! integration, monitors, gauges); `advance.rs` is the integrator's sweep and `checkpoint.rs`
 //! saves and restores the state.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 mod advance;
@@ -112,6 +115,10 @@ pub trait Simulation: Send + Sync {
     fn checkpoint(&self) -> Checkpoint;
     /// Continues from a checkpoint of a run of the same scene.
     fn restore(&mut self, checkpoint: &Checkpoint) -> Result<()>;
+    /// The run's stop flag: while it is set, [`Simulation::step`] and
+    /// [`Simulation::run_until`] return [`Error::Interrupted`] before their next step (the
+    /// binding sets it from another thread on Ctrl-C and clears it before each call).
+    fn stop_flag(&self) -> Arc<AtomicBool>;
 }
 
 /// Integrator history.
@@ -195,6 +202,8 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     n_excluded: usize,
     /// Initial mechanical energy and potential energy above the floor [J] (energy monitor).
     energy0: (Real, Real),
+    /// See [`Simulation::stop_flag`]; read once per step, never inside a particle loop.
+    stop: Arc<AtomicBool>,
 }
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
@@ -312,6 +321,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         &self.c
     }
 
+    /// [`Error::Interrupted`] if the stop flag is set (between two steps: the state is whole).
+    fn check_stop(&self) -> Result<()> {
+        if self.stop.load(Ordering::Relaxed) {
+            return Err(Error::Interrupted { step: self.steps, time: self.time });
+        }
+        Ok(())
+    }
 }
 
 /// Runs `op` on a thread of rayon's pool. A step has some 80 parallel loops; called from
@@ -355,6 +371,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     fn step(&mut self, n: u64) -> Result<()> {
         on_pool(|| {
             for _ in 0..n {
+                self.check_stop()?;
                 let mut timer = phases::Timer::start();
                 self.step_once()?;
                 timer.lap(Phase::Step);
@@ -368,6 +385,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         }
         on_pool(|| {
             while self.time < until {
+                self.check_stop()?;
                 self.step_once()?;
             }
             Ok(())
@@ -489,6 +507,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     }
     fn restore(&mut self, c: &Checkpoint) -> Result<()> {
         self.restore_state(c)
+    }
+    fn stop_flag(&self) -> Arc<AtomicBool> {
+        Arc::clone(&self.stop)
     }
 }
 

@@ -93,11 +93,14 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             // the particle whose limit set the step (force or viscous/acoustic)
             let slot = if dt_f < lim.min_dt_cv { lim.acc_slot } else { lim.cv_slot };
             let slot = (slot < self.p.len()).then_some(slot);
-            return Err(self.diagnostics().instability(
-                InstabilityKind::TimeStepCollapse,
-                slot,
-                format!("time step {dt:e} s below the floor {:e} s", self.dt_floor),
-            ));
+            let (kind, message) = if dt.is_finite() {
+                (InstabilityKind::TimeStepCollapse, format!("time step {dt:.3e} s below the floor {:.3e} s", self.dt_floor))
+            } else {
+                // NaN from a NaN acceleration or speed; infinite when nothing limits the step
+                let why = format!("largest acceleration {:.3e} m/s^2, smallest viscous/acoustic step {:.3e} s", lim.max_acc, lim.min_dt_cv);
+                (InstabilityKind::NonFiniteTimeStep, format!("time step {dt} s ({why})"))
+            };
+            return Err(self.diagnostics().instability(kind, slot, message));
         }
         Ok(dt)
     }
