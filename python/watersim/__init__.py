@@ -33,7 +33,7 @@ from .flume import *  # noqa: F403 (its __all__: the flume's models, gauges and 
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .rundir import load
 from .scenefile import load as load_scene
-from .scenes import DamBreak, SceneBuilder, Tank
+from .scenes import DamBreak, SceneBuilder, StiffFluidWarning, Tank
 from .simulation import Simulation
 
 __all__ = [
@@ -41,6 +41,7 @@ __all__ = [
     "DamBreak",
     "InstabilityError",
     "SceneBuilder",
+    "StiffFluidWarning",
     "SceneError",
     "Simulation",
     "Tank",

@@ -65,6 +65,11 @@ MAX_USUAL_COEFSOUND = 200.0
 a stiff fluid only multiplies the steps (the stable region measured goes to 80)."""
 
 
+class StiffFluidWarning(UserWarning):
+    """``coefsound`` far above the usual range: legal, but the run takes proportionally more
+    steps. Its own class so that a script that means it can silence it alone."""
+
+
 @dataclass(frozen=True, kw_only=True)
 class SceneBuilder:
     """Parameters shared by every scene. A numerical or physical parameter left ``None`` takes
@@ -191,7 +196,7 @@ class SceneBuilder:
             warnings.warn(
                 f"coefsound = {self.coefsound:.3g}: far above the 10-80 of docs/stability.md; "
                 f"the time step shrinks in proportion, {self.coefsound / 10:.3g} times as many "
-                "steps as at coefsound 10", stacklevel=4)
+                "steps as at coefsound 10", StiffFluidWarning, stacklevel=4)
         _at_most("cfl", self.cfl, 1.0, "a Courant number")
         if self.force_precision == "f32" and isinstance(self.viscosity, nm.LaminarSps):
             raise SceneError(

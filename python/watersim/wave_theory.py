@@ -1711,6 +1711,8 @@ def irregular_paddle_motion(
     _choice("paddle", paddle, ("piston", "flap"))
     if repeat_period is None:
         period_rep = 256.0 * Tp
+        if not math.isfinite(period_rep):
+            raise ValueError(f"tp: {Tp!r} s overflows the default repeat period of 256 Tp")
     else:
         period_rep = float(_positive("repeat_period", repeat_period))
     f, density, df = _spectral_lines(Hs, Tp, spectrum, gamma, frequency_range, period_rep)

@@ -271,12 +271,12 @@ class FlumeScene(SceneBuilder):
             )
         if flume.length < 4.0 * dp:
             raise SceneError(f"dp: {dp:g} m is too coarse for a flume {flume.length:g} m long")
-        self._check_lattice()
         across = 1.0 if flume.width is None else flume.width / dp
         n_fluid = flume.length / dp * flume.depth / dp * across
-        if not n_fluid <= MAX_PARTICLES:
+        if not n_fluid <= MAX_PARTICLES:  # first: the lattice check overflows on 1e306 layers
             raise SceneError(f"dp: {dp:g} m would need about {n_fluid:.3g} fluid particles; "
                              "use a larger dp")
+        self._check_lattice()
         law = self.law
         if not (math.isfinite(law.forward) and math.isfinite(law.backward)):
             raise SceneError(f"wave: the paddle motion is not finite (excursion {law.forward!r} m)")

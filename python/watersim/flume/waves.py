@@ -309,8 +309,8 @@ class IrregularWave(_SpectralWave, _Wave):
                 self.repeat_period,
                 g,
             )
-        except ValueError as exc:
-            raise SceneError(f"wave: {exc}") from None
+        except ValueError as exc:  # wave_theory names its own argument first
+            raise SceneError(f"wave.{exc}") from None
         return _spectral_law(motion, paddle, depth, self.tp, 1.0, 1.8 * self.hs)
 
     def default_sample_interval(self, depth: float, g: float) -> float:
