@@ -25,14 +25,16 @@ UNTIL = 1.2
 @pytest.fixture(scope="module")
 def scene_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A small flume with a moving piston, a beach, two elevation gauges, a velocity probe, a
-    pressure gauge and a run-up gauge: about 600 particles, a few seconds to UNTIL."""
+    pressure gauge, an overtopping gauge on the beach (its particle sides go into the checkpoints)
+    and a run-up gauge: about 600 particles, a few seconds to UNTIL."""
     flume = ws.Flume(length=2.4, depth=0.24, damping=False,
                      beach=ws.PlaneBeach(toe=1.4, slope=0.3))
     scene = flume.scene(ws.RegularWave(height=0.04, period=1.0), paddle=ws.Piston(ramp_periods=0.5),
                         dp=0.04, until=UNTIL, sample_interval=0.02,
                         gauges=[ws.ElevationGauge(0.5), ws.ElevationGauge(1.0),
                                 ws.VelocityProbe(points=((0.5, 0.15),)),
-                                ws.PressureGauge(points=((0.5, 0.06), (0.5, 0.3)), name="p")],
+                                ws.PressureGauge(points=((0.5, 0.06), (0.5, 0.3)), name="p"),
+                                ws.OvertoppingGauge(x=1.6, name="q")],
                         runup=ws.RunupGauge())
     path = tmp_path_factory.mktemp("scene") / "small.toml"
     path.write_text(sf.dumps(scene))
@@ -144,6 +146,8 @@ def test_load_gives_labelled_records(straight: Path) -> None:
     csv = np.genfromtxt(straight / "gauges.csv", delimiter=",", names=True)
     assert np.array_equal(csv["t_s"], data["time"].values)
     assert np.array_equal(csv["p_x0p500_z0p060_Pa"], pressure.values[:, 0])
+    assert data["overtopping_volume_q"].attrs["units"] == "m^3/m"
+    assert data["overtopping_volume_q"].values[0] == 0.0
 
 
 def _snapshot(folder: Path) -> dict[str, bytes]:

@@ -65,6 +65,9 @@ def write_state(state: Mapping[str, Any], scene: Mapping[str, Any], path: str | 
         data[f"gauge{i}_t"] = gauge["t"]
         data[f"gauge{i}_values"] = gauge["values"]
         data[f"gauge{i}_next_time"] = np.asarray(gauge["next_time"])
+        if "crossings_past" in gauge:  # an overtopping gauge's particle sides
+            data[f"gauge{i}_crossings_past"] = np.asarray(gauge["crossings_past"], dtype=np.uint8)
+            data[f"gauge{i}_crossings_net"] = np.asarray(gauge["crossings_net"], dtype=np.int64)
     path = Path(path)
     # write then rename, so an interrupted save never leaves a truncated checkpoint behind
     with atomic_write(path, "wb") as f:
@@ -138,14 +141,17 @@ def _read_state(f: Any) -> dict[str, Any]:
     state["energy0"] = tuple(float(v) for v in f["energy0"])
     if "paddle_correction" in f:
         state["paddle_correction"] = tuple(float(v) for v in f["paddle_correction"])
-    state["gauges"] = [
-        {
+    state["gauges"] = []
+    for i in range(int(f["n_gauges"])):
+        gauge = {
             "t": np.asarray(f[f"gauge{i}_t"]),
             "values": np.asarray(f[f"gauge{i}_values"]),
             "next_time": float(f[f"gauge{i}_next_time"]),
         }
-        for i in range(int(f["n_gauges"]))
-    ]
+        if f"gauge{i}_crossings_past" in f:
+            gauge["crossings_past"] = np.asarray(f[f"gauge{i}_crossings_past"])
+            gauge["crossings_net"] = int(f[f"gauge{i}_crossings_net"])
+        state["gauges"].append(gauge)
     return state
 
 

@@ -5,6 +5,7 @@
 //! particles: `f(x) = sum_b V_b W(x - x_b) f_b / sum_b V_b W(x - x_b)`, `V_b = m / rho_b`.
 
 mod body_force;
+mod overtopping;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -19,6 +20,7 @@ use crate::physics::Constants;
 use crate::scene::BoxSpec;
 
 pub use body_force::{body_force, NO_BODY};
+pub use overtopping::Crossings;
 
 /// How a free-surface gauge finds the surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -80,6 +82,10 @@ pub enum GaugeSpec {
         point: Vec<Real>,
         interval: Real,
     },
+    /// Overtopping: the volume of fluid that has crossed the vertical section at `x` towards +x
+    /// since the first sample, net of what came back [m^3 in 3D, m^2 (per unit width) in 2D],
+    /// and the discharge over the last interval [m^3/s, m^2/s] (see [`Crossings`]).
+    Overtopping { name: String, x: Real, interval: Real },
 }
 
 impl GaugeSpec {
@@ -90,7 +96,8 @@ impl GaugeSpec {
             | GaugeSpec::Window { name, .. }
             | GaugeSpec::Runup { name, .. }
             | GaugeSpec::Pressure { name, .. }
-            | GaugeSpec::Force { name, .. } => name,
+            | GaugeSpec::Force { name, .. }
+            | GaugeSpec::Overtopping { name, .. } => name,
         }
     }
 
@@ -101,7 +108,8 @@ impl GaugeSpec {
             | GaugeSpec::Window { interval, .. }
             | GaugeSpec::Runup { interval, .. }
             | GaugeSpec::Pressure { interval, .. }
-            | GaugeSpec::Force { interval, .. } => *interval,
+            | GaugeSpec::Force { interval, .. }
+            | GaugeSpec::Overtopping { interval, .. } => *interval,
         }
     }
 
@@ -113,6 +121,7 @@ impl GaugeSpec {
             GaugeSpec::Runup { .. } => "runup",
             GaugeSpec::Pressure { .. } => "pressure",
             GaugeSpec::Force { .. } => "force",
+            GaugeSpec::Overtopping { .. } => "overtopping",
         }
     }
 
@@ -120,7 +129,7 @@ impl GaugeSpec {
     /// columns in turn): elevation and run-up, z [m] (NaN when no water is found); velocity
     /// probe and window, per point the velocity [m/s] then the kernel volume sum; pressure, per
     /// point the pressure [Pa] then the kernel volume sum; force, the force then the moment
-    /// (one component in 2D, three in 3D).
+    /// (one component in 2D, three in 3D); overtopping, the crossed volume then the discharge.
     pub fn columns(&self, dim: usize) -> Vec<Column> {
         match self {
             GaugeSpec::Elevation { .. } | GaugeSpec::Runup { .. } => vec![Column { name: "z", size: 1 }],
@@ -133,6 +142,7 @@ impl GaugeSpec {
             GaugeSpec::Force { .. } => {
                 vec![Column { name: "force", size: dim }, Column { name: "moment", size: if dim == 2 { 1 } else { 3 } }]
             }
+            GaugeSpec::Overtopping { .. } => vec![Column { name: "volume", size: 1 }, Column { name: "discharge", size: 1 }],
         }
     }
 
@@ -235,6 +245,11 @@ impl GaugeSpec {
                     return Err(Error::invalid(format!("{field}.point"), format!("must be {dim} finite numbers, got {point:?}")));
                 }
             }
+            GaugeSpec::Overtopping { x, .. } => {
+                if !x.is_finite() || *x < lo[0] || *x > hi[0] {
+                    return Err(Error::invalid(format!("{field}.x"), format!("{x} is outside the domain [{}, {}]", lo[0], hi[0])));
+                }
+            }
         }
         Ok(())
     }
@@ -266,6 +281,8 @@ pub struct GaugeRecord {
     /// Window grid shape (`n`), empty otherwise.
     pub shape: Vec<usize>,
     pub next_time: Real,
+    /// An overtopping gauge's particle sides and net count (empty for the other gauges).
+    pub crossings: Crossings,
 }
 
 impl GaugeRecord {
@@ -284,6 +301,7 @@ impl GaugeRecord {
             points: points.into_iter().flatten().collect(),
             shape: if let GaugeSpec::Window { n, .. } = g { n.clone() } else { Vec::new() },
             next_time: 0.0,
+            crossings: Crossings::default(),
         }
     }
 }
@@ -489,6 +507,11 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                     let (force, moment) = body_force(self, body, D::V::from_slice(point));
                     rec.values.extend_from_slice(force.as_slice());
                     rec.values.extend_from_slice(&moment[..if D::DIM == 2 { 1 } else { 3 }]);
+                }
+                GaugeSpec::Overtopping { x, .. } => {
+                    let last = rec.t.last().map(|&t_last| (t_last, rec.values[rec.values.len() - rec.width]));
+                    let sample = rec.crossings.sample(self, *x, t, last);
+                    rec.values.extend_from_slice(&sample);
                 }
             }
             rec.t.push(t);

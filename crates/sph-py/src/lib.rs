@@ -320,6 +320,10 @@ impl Simulation {
             gd.set_item("t", PyArray1::from_slice(py, &g.t))?;
             gd.set_item("values", PyArray1::from_slice(py, &g.values))?;
             gd.set_item("next_time", g.next_time)?;
+            if !g.crossings.past.is_empty() {
+                gd.set_item("crossings_past", PyArray1::from_slice(py, &g.crossings.past))?;
+                gd.set_item("crossings_net", g.crossings.net)?;
+            }
             gauges.append(gd)?;
         }
         d.set_item("gauges", gauges)?;
@@ -358,6 +362,11 @@ impl Simulation {
             rec.t = item(gd, "t")?;
             rec.values = item(gd, "values")?;
             rec.next_time = item(gd, "next_time")?;
+            // an overtopping gauge's sides, once it has sampled
+            if gd.contains("crossings_past")? {
+                rec.crossings.past = item(gd, "crossings_past")?;
+                rec.crossings.net = item(gd, "crossings_net")?;
+            }
         }
         c.paddle_correction = match checkpoint.get_item("paddle_correction")? {
             Some(v) if !v.is_none() => Some(item(checkpoint, "paddle_correction")?),

@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from .. import analysis as an
 from .. import wave_theory as wt
-from .gauges import ForceGauge
+from .gauges import ForceGauge, OvertoppingGauge
 from .paddles import PaddleLaw
 from .waves import IrregularWave, RegularWave
 
@@ -58,6 +58,7 @@ UNITS: dict[str, str] = {
     "Fx_max": FORCE_UNIT, "Fx_min": FORCE_UNIT, "Fz_max": FORCE_UNIT, "Fz_min": FORCE_UNIT,
     "Fx_mean": FORCE_UNIT, "Fz_mean": FORCE_UNIT, "Fx_significant": FORCE_UNIT,
     "impulse": "N s (N s/m in 2D)", "impulse_start": "s", "impulse_end": "s",
+    "total": "m^3 (m^3/m in 2D)", "peak_discharge": "m^3/s (m^3/s/m in 2D)",
 }
 """The units of analysis.json's quantities, by key wherever it appears ("1": a pure number;
 elevations and levels are relative to the still-water level, times from the start of the run)."""
@@ -233,8 +234,9 @@ def analyse_flume(
     - ``reflection`` (regular or irregular waves, 2-3 gauges over the flat floor between the
       paddle and the beach's toe, outside the damping zone, with a usable spacing): ``method``,
       ``gauges``, ``coefficient``, ``incident_amplitude``, ``reflected_amplitude``.
-    - ``forces`` (force gauges): ``name``, ``structure`` and, over the whole record, the peaks,
-      means, impulse and significant force of :func:`watersim.analysis.load_statistics`.
+    - ``forces``: per force gauge ``name``, ``structure``, the record's peaks, means, impulse and
+      significant force (:func:`watersim.analysis.load_statistics`); ``overtopping``: per
+      overtopping gauge ``name``, ``x``, ``total`` crossed volume and ``peak_discharge``.
     - ``notes``: what could not be computed and why.
     - ``units``: the unit of each quantity by key (:data:`UNITS`).
     """
@@ -271,8 +273,8 @@ def analyse_flume(
         if setup.flume.beach is not None:
             result["crest_celerity"] = _crest_celerity(run)
         result["mean_level_near_paddle"] = _mean_level_near_paddle(run)
-    if forces := _forces(run):
-        result["forces"] = forces
+    result.update({k: v for k, v in (("forces", _forces(run)),
+                                     ("overtopping", _overtopping(run))) if v})
     return result
 
 
@@ -780,3 +782,12 @@ def _mean_level_near_paddle(run: _Run) -> dict[str, Any] | None:
         "spread_over_H": blocks.spread / height,
         "drift_over_H": blocks.drift / height,
     }
+
+
+def _overtopping(run: _Run) -> list[dict[str, Any]]:
+    """Per overtopping gauge with samples: the total volume over its section and the peak
+    discharge (see ``overtopping``)."""
+    specs = {s["name"]: s for s in run.setup._gauge_specs()}
+    return [{"name": name, "x": specs[name]["x"], "total": _f(volume[-1]),
+             "peak_discharge": _f(np.max(discharge))}
+            for name, t, volume, discharge in OvertoppingGauge.records_of(run.gauges) if t.size]

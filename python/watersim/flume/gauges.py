@@ -1,5 +1,5 @@
 """The gauges of a flume: surface elevation, velocity probes and windows, pressure, run-up,
-force on a structure."""
+force on a structure, overtopping."""
 
 from __future__ import annotations
 
@@ -29,6 +29,7 @@ __all__ = [
     "SURFACE_METHODS",
     "ElevationGauge",
     "ForceGauge",
+    "OvertoppingGauge",
     "PressureGauge",
     "RunupGauge",
     "VelocityProbe",
@@ -713,7 +714,89 @@ class ForceGauge(_Gauge):
         return series
 
 
-Gauge = ElevationGauge | VelocityProbe | VelocityWindow | PressureGauge | ForceGauge
+@dataclass(frozen=True)
+class OvertoppingGauge(_Gauge):
+    """Overtopping: the volume of water that has crossed the vertical section at ``x`` towards
+    the far end since the start, net of what came back (each particle's side of the section is
+    tracked by the core), and the discharge over each sampling interval. Per unit width in 2D:
+    m^3/m and m^3/s/m; in 3D m^3 and m^3/s over the whole width.
+
+    Its record is ``FlumeGauges.records[name]``: ``t`` (n,) [s], ``volume`` (n,) and
+    ``discharge`` (n,) (0 at the first sample).
+
+    Attributes:
+        x: the section, e.g. a seawall's crest [m].
+        name: record name; default ``overtopping{i}``.
+        interval: sampling interval [s]; default the scene's ``sample_interval``.
+    """
+
+    x: float
+    name: str | None = None
+    interval: float | None = None
+
+    TAG: ClassVar[str] = "overtopping"
+    """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
+    def __post_init__(self) -> None:
+        _set(self, "x", _number("gauge.x", self.x))
+        self._check_name_and_interval("gauge")
+
+    def along_x(self) -> list[float]:
+        return [self.x]
+
+    def check_in(self, scene: FlumeScene, label: str) -> None:
+        """Refuse a section outside the flume."""
+        length = scene.flume.length
+        if not 0.0 < self.x < length:
+            raise SceneError(f"{label}.x: x = {self.x:g} m lies outside the flume "
+                             f"(0, {length:g}) m")
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        return {"type": self.TAG, "name": name, "x": self.x, "interval": interval}
+
+    @classmethod
+    def records_of(cls, gauges: FlumeGauges) -> Iterator[tuple[str, Any, Any, Any]]:
+        """Per overtopping gauge: its name, ``t``, ``volume`` and ``discharge`` (each (n,))."""
+        for name, t, record in cls._records_by_name(gauges):
+            yield (name, t, np.asarray(record["volume"], dtype=np.float64).reshape(-1),
+                   np.asarray(record["discharge"], dtype=np.float64).reshape(-1))
+
+    @staticmethod
+    def units(dim: int) -> tuple[str, str]:
+        """The volume's and the discharge's units (per unit width in 2D)."""
+        return ("m^3/m", "m^3/s/m") if dim == 2 else ("m^3", "m^3/s")
+
+    @classmethod
+    def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
+        """Per gauge ``overtopping_volume_NAME`` and ``overtopping_discharge_NAME``
+        (time_NAME)."""
+        volume_unit, discharge_unit = cls.units(gauges.setup.dim)
+        data: dict[str, Any] = {}
+        coords: dict[str, Any] = {}
+        for name, t, volume, discharge in cls.records_of(gauges):
+            tname = f"time_{name}"
+            coords[tname] = (tname, t, {"units": "s"})
+            data[f"overtopping_volume_{name}"] = (tname, volume, {
+                "units": volume_unit, "long_name": "volume crossed since the start, net"})
+            data[f"overtopping_discharge_{name}"] = (tname, discharge, {
+                "units": discharge_unit, "long_name": "discharge over the last interval"})
+        return data, coords
+
+    @classmethod
+    def csv_series(cls, gauges: FlumeGauges) -> list[Series]:
+        """Per gauge its volume and discharge (gauge ``q`` in 2D: ``q_volume_m3_per_m``,
+        ``q_discharge_m3_per_s_per_m``)."""
+        volume_unit, discharge_unit = (u.replace("^", "").replace("/", "_per_")
+                                       for u in cls.units(gauges.setup.dim))
+        series: list[Series] = []
+        for name, t, volume, discharge in cls.records_of(gauges):
+            series.append((csv_column(f"{name}_volume", volume_unit), t, volume))
+            series.append((csv_column(f"{name}_discharge", discharge_unit), t, discharge))
+        return series
+
+
+Gauge = (ElevationGauge | VelocityProbe | VelocityWindow | PressureGauge | ForceGauge
+         | OvertoppingGauge)
 """The gauges a :class:`FlumeScene` takes in its ``gauges`` (the run-up gauge is apart)."""
 
 SCENE_GAUGE_TYPES: tuple[type[_Gauge], ...] = typing.get_args(Gauge)

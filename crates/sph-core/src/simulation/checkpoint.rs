@@ -80,6 +80,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         expect("kinds", c.kinds.len(), n)?;
         expect("gauges", c.gauges.len(), self.gauges.len())?;
         check_values(c, &self.gauges)?;
+        for (i, g) in c.gauges.iter().enumerate() {
+            let past = &g.crossings.past;
+            if !past.is_empty() && (past.len() != n || past.iter().any(|&s| s > 1)) {
+                return Err(Error::invalid(format!("checkpoint.gauges[{i}].crossings"), format!("{} sides for {n} particles, each 0 or 1", past.len())));
+            }
+        }
         match (self.absorber.is_some(), c.paddle_correction.is_some()) {
             (true, false) => return Err(Error::invalid("checkpoint.paddle_correction", "missing: this scene's paddle absorbs waves")),
             (false, true) => {
