@@ -41,18 +41,17 @@ def test_settings_are_dualsphysics_own() -> None:
     assert (piston["kernel"], piston["coefh"], piston["diffusion"]["model"]) == (
         "wendland", 1.2, "none")
     assert piston["integrator"]["scheme"] == "symplectic" and piston["paddle"]["kind"] == "piston"
-    assert DSPH_CASES["dsph-dambreak3d"].target_us == (2.58, 1.32)
 
 
-def test_bench_reports_the_comparison_with_dualsphysics() -> None:
+def test_bench_prints_no_ratio_it_did_not_measure() -> None:
     proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps", "2",
                    "--json", env={"RAYON_NUM_THREADS": "1"})
     assert proc.returncode == 0, proc.stderr
     result = json.loads(proc.stdout)
     assert abs(result["n_particles"] - 3000) <= 0.05 * 3000
-    assert result["dsph_us_per_particle_step"] == {"1": 1.16, "2": 0.7}
-    assert result["speedup_vs_dsph"] == pytest.approx(1.16 / result["us_per_particle_step"])
-    assert isinstance(result["meets_target"], bool) and result["peak_rss_bytes"] > 0
+    # a ratio to DualSPHysics comes only from `watersim bench --against` (side by side)
+    assert not {k for k in result if "speedup" in k or "target" in k or k.startswith("dsph_us")}
+    assert result["dsph_particles"] == 21_001 and result["peak_rss_bytes"] > 0
     # Verlet: one force evaluation per step; a full 2D support at coefh 1 holds some 24 pairs
     assert result["force_evaluations_per_step"] == 1
     assert 10 < result["pairs_per_fluid_particle"] < 25

@@ -1,5 +1,6 @@
-"""DualSPHysics 5.4 reference cases for ``watersim bench`` (issue: three times DualSPHysics' CPU
-speed per particle-step on the same machine).
+"""DualSPHysics 5.4 reference cases for ``watersim bench`` and for the side-by-side comparison
+``watersim bench --against`` (:mod:`watersim.bench_against`), which runs DualSPHysics on the case
+XML named in ``xml`` and WaterSim on the matching case here.
 
 Each case reproduces a DualSPHysics example's geometry and numerical settings, so that the
 microseconds per particle-step compare like with like: same particle count (one layer of
@@ -15,18 +16,19 @@ state in f64). ``watersim bench --set force_precision=f64`` times WaterSim's def
                        origin, column 0.12 x 0.12 x 0.45 m at (0.9, 0.24, 0); dp 0.0085 m;
                        171,496 particles (128,310 fluid); cubic spline, coefh 1.0; artificial
                        alpha 0.1; Fourtakas delta 0.1; Verlet (Euler every 40); CFL 0.2;
-                       coefsound 20. DualSPHysics: 7.73 us (1 thread), 3.95 us (2 threads).
+                       coefsound 20.
 ``dsph-dambreak2d``    ``CaseDambreakVal2D``: column 1 x 2 m in a 4 m tank, dp 0.01 m, 21,001
                        particles (20,000 fluid); Wendland, coefh 1.0; alpha 0.02; Fourtakas delta
-                       0.1; Verlet; CFL 0.2; coefsound 20. DualSPHysics: 1.16 / 0.70 us.
+                       0.1; Verlet; CFL 0.2; coefsound 20.
 ``dsph-piston2d``      2D piston flume: depth 0.266 m (44 layers of dp: 0.264 m of water, as in
                        DualSPHysics), H 0.1 m, T 1.3 s, dp 0.006 m, DualSPHysics 22,492
                        particles; Wendland, coefh 1.2; alpha 0.01; no diffusion; Symplectic.
-                       DualSPHysics: 2.06 / 1.23 us.
 =====================  =========================================================================
 
-The scenes are the core's JSON form; ``scale`` multiplies dp (``watersim bench --particles N``
-picks it so that the count is about N, for the O(N) scaling check).
+No DualSPHysics timing is written here: a ratio to DualSPHysics is only what ``watersim bench
+--against`` measures side by side. The scenes are the core's JSON form; the scene maker takes
+dp (``watersim bench --particles N`` picks it so that the count is about N, for the O(N)
+scaling check).
 """
 
 from __future__ import annotations
@@ -41,26 +43,21 @@ __all__ = ["DSPH_CASES", "DsphCase", "dsph_scene"]
 
 @dataclass(frozen=True)
 class DsphCase:
-    """A DualSPHysics reference case: its scene maker and DualSPHysics' own timings.
+    """A DualSPHysics reference case: its scene maker and the DualSPHysics case it matches.
 
     Attributes:
         scene: function of the lattice spacing dp [m] returning the core's scene dict.
         dp: the case's own dp [m].
-        particles: DualSPHysics' particle count at that dp.
-        dsph_us: DualSPHysics 5.4 CPU microseconds per particle-step on (1, 2) threads.
+        particles: the particle count DualSPHysics' GenCase makes of ``xml`` at that dp.
+        xml: file name of the DualSPHysics case XML (DualSPHysics' ``examples/``).
         description: one line for reports.
     """
 
     scene: Callable[[float], dict[str, Any]]
     dp: float
     particles: int
-    dsph_us: tuple[float, float]
+    xml: str
     description: str
-
-    @property
-    def target_us(self) -> tuple[float, float]:
-        """The target: three times faster than DualSPHysics, on (1, 2) threads [us]."""
-        return (round(self.dsph_us[0] / 3.0, 2), round(self.dsph_us[1] / 3.0, 2))
 
 
 def _common(dim: int, dp: float, **kw: Any) -> dict[str, Any]:
@@ -160,11 +157,11 @@ def piston2d(dp: float) -> dict[str, Any]:
 
 
 DSPH_CASES: dict[str, DsphCase] = {
-    "dsph-dambreak3d": DsphCase(dambreak3d, 0.0085, 171_496, (7.73, 3.95),
+    "dsph-dambreak3d": DsphCase(dambreak3d, 0.0085, 171_496, "CaseDambreak_Def.xml",
                                 "3D dam break with obstacle (DualSPHysics CaseDambreak)"),
-    "dsph-dambreak2d": DsphCase(dambreak2d, 0.01, 21_001, (1.16, 0.70),
+    "dsph-dambreak2d": DsphCase(dambreak2d, 0.01, 21_001, "CaseDambreakVal2D_Def.xml",
                                 "2D dam break (DualSPHysics CaseDambreakVal2D)"),
-    "dsph-piston2d": DsphCase(piston2d, 0.006, 22_492, (2.06, 1.23),
+    "dsph-piston2d": DsphCase(piston2d, 0.006, 22_492, "WallRegAwas2.xml",
                               "2D piston flume, regular waves"),
 }
 """The DualSPHysics reference cases of ``watersim bench --case``."""

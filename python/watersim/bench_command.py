@@ -1,4 +1,5 @@
-"""``watersim bench``: the solver's speed on a dam break or a DualSPHysics reference case.
+"""``watersim bench``: the solver's speed on a dam break or a DualSPHysics reference case, or
+(``--against``) side by side with DualSPHysics (:mod:`watersim.bench_against`).
 
 One record per run: the median wall time of K steps after W untimed ones, the work (fluid pairs,
 force evaluations per step), the memory (counted bytes and the process's resident set) and the
@@ -21,6 +22,7 @@ from . import overrides
 from ._core import InstabilityError
 from ._jsonio import json_ready as _jsonable
 from ._version import __version__
+from .bench_against import cmd_against
 from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .builtin_cases import SET_HELP, builder_from_args
@@ -182,7 +184,17 @@ def _compare_threads(sim: Simulation, counts: tuple[int, int], steps: int,
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    """``watersim bench``: time K steps of a dam break scaled to about N particles."""
+    """``watersim bench``: time K steps of a dam break scaled to about N particles, or
+    (``--against``) WaterSim and DualSPHysics side by side."""
+    if args.against is not None:
+        _refuse_with_against(args)
+        return cmd_against(args)
+    for option in ("gencase", "xml", "interval", "rounds", "cpu", "workdir"):
+        if getattr(args, option) is not None:
+            raise CliError(f"--{option}: only with --against (the side-by-side comparison)")
+    for option, value in PLAIN_DEFAULTS.items():
+        if getattr(args, option) is None:
+            setattr(args, option, value)
     if args.case not in BENCH_CASES:
         raise CliError(f"--case: unknown case {args.case!r}; valid: {', '.join(BENCH_CASES)}")
     if args.particles is not None and args.particles < 10:
@@ -200,6 +212,18 @@ def cmd_bench(args: argparse.Namespace) -> int:
     result = _bench_record(args, compare, baseline_rss)
     _print_bench(result, args.json)
     return 0 if "error" not in result else 1
+
+
+def _refuse_with_against(args: argparse.Namespace) -> None:
+    """``--against`` takes its cases from ``--xml`` and times whole intervals: the options of a
+    plain bench run are refused with it, not ignored. Its own options get their defaults."""
+    for option in (*PLAIN_DEFAULTS, "particles", "compare_threads", "scaling", "set"):
+        if getattr(args, option) is not None:
+            raise CliError(f"--{option.replace('_', '-')}: not with --against (its cases are "
+                           "the --xml files, each run over --interval from t = 0)")
+    for option, value in AGAINST_DEFAULTS.items():
+        if getattr(args, option) is None:
+            setattr(args, option, value)
 
 
 def _print_bench(result: dict[str, Any], as_json: bool) -> None:
@@ -354,14 +378,9 @@ def _bench_record(args: argparse.Namespace, compare: tuple[int, int] | None,
         "version": __version__,
     }
     if args.case in DSPH_CASES:
-        spec = DSPH_CASES[args.case]
-        result["dsph_particles"] = spec.particles
-        result["dsph_us_per_particle_step"] = {"1": spec.dsph_us[0], "2": spec.dsph_us[1]}
-        result["target_us_per_particle_step"] = {"1": spec.target_us[0], "2": spec.target_us[1]}
-        us = result["us_per_particle_step"]
-        if threads in (1, 2) and us:
-            result["speedup_vs_dsph"] = spec.dsph_us[threads - 1] / us
-            result["meets_target"] = us <= spec.target_us[threads - 1]
+        # GenCase's count for the case; a speed ratio to DualSPHysics is only what
+        # `watersim bench --against` measures side by side (watersim.bench_against)
+        result["dsph_particles"] = DSPH_CASES[args.case].particles
     if comparison is not None:
         result["thread_comparison"] = comparison
     if error is not None:
@@ -374,7 +393,8 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
     bench = sub.add_parser(
         "bench", help="time the solver on a dam break or a DualSPHysics reference case"
     )
-    bench.add_argument("--case", default="dambreak2d", help=f"one of: {', '.join(BENCH_CASES)}")
+    bench.add_argument("--case", default=None,
+                       help=f"one of: {', '.join(BENCH_CASES)} (default dambreak2d)")
     bench.add_argument(
         "--particles",
         type=int,
@@ -382,9 +402,9 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
         metavar="N",
         help="about this many particles (default: the case's own dp)",
     )
-    bench.add_argument("--steps", type=int, default=20, metavar="K", help="timed steps (20)")
-    bench.add_argument("--warmup", type=int, default=3, metavar="W", help="untimed steps (3)")
-    bench.add_argument("--repeat", type=int, default=1, metavar="R",
+    bench.add_argument("--steps", type=int, default=None, metavar="K", help="timed steps (20)")
+    bench.add_argument("--warmup", type=int, default=None, metavar="W", help="untimed steps (3)")
+    bench.add_argument("--repeat", type=int, default=None, metavar="R",
                        help="time R runs of K steps in a row and report their median (1)")
     bench.add_argument("--compare-threads", metavar="A,B", default=None,
                        help="then R rounds of K steps on A threads and K on B threads in turn, "
@@ -394,5 +414,39 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
                             "the time per step to fluid and wall particles (scaling)")
     bench.add_argument("--set", action="append", metavar="KEY=VALUE", help=SET_HELP)
     bench.add_argument("--json", action="store_true", help="print one JSON object")
+    _add_against_arguments(bench)
     bench.set_defaults(func=cmd_bench)
     return bench
+
+
+PLAIN_DEFAULTS: dict[str, Any] = {"case": "dambreak2d", "steps": 20, "warmup": 3, "repeat": 1}
+"""The defaults of a plain bench run's options (refused with ``--against``)."""
+
+AGAINST_DEFAULTS: dict[str, Any] = {"interval": 0.2, "rounds": 3, "cpu": 0}
+"""The defaults of ``--against``'s own options (refused without ``--against``)."""
+
+
+def _add_against_arguments(bench: argparse.ArgumentParser) -> None:
+    """The side-by-side comparison's options (:mod:`watersim.bench_against`)."""
+    group = bench.add_argument_group(
+        "side by side with DualSPHysics",
+        "--against runs DualSPHysics' CPU binary on the GenCase output of each --xml and "
+        "WaterSim on the matching dsph-* case, alternately, pinned to one core on one thread, "
+        "and prints the ratios of their times with the other processes' load on that core")
+    group.add_argument("--against", metavar="DUALSPHYSICS", default=None,
+                       help="DualSPHysics' CPU binary (e.g. DualSPHysics5.4CPU_linux64)")
+    group.add_argument("--gencase", metavar="GENCASE", default=None,
+                       help="DualSPHysics' GenCase binary (GenCase_linux64)")
+    group.add_argument("--xml", metavar="CASE.xml", action="append", default=None,
+                       help="a DualSPHysics case XML, repeatable: " + ", ".join(
+                           f"{spec.xml} ({case})" for case, spec in DSPH_CASES.items()))
+    group.add_argument("--interval", type=float, default=None, metavar="S",
+                       help=f"simulated seconds from t = 0 ({AGAINST_DEFAULTS['interval']})")
+    group.add_argument("--rounds", type=int, default=None, metavar="R",
+                       help=f"rounds per case, the order alternating "
+                            f"({AGAINST_DEFAULTS['rounds']})")
+    group.add_argument("--cpu", type=int, default=None, metavar="N",
+                       help=f"the core both codes are pinned to ({AGAINST_DEFAULTS['cpu']})")
+    group.add_argument("--workdir", metavar="DIR", default=None,
+                       help="keep GenCase's output and both codes' logs here (default: a "
+                            "temporary folder, removed)")

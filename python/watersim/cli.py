@@ -11,6 +11,8 @@
     watersim bench [--case dambreak2d|dambreak3d|dsph-dambreak3d|dsph-dambreak2d|dsph-piston2d]
                    [--particles N] [--steps K] [--warmup W] [--repeat R] [--compare-threads A,B]
                    [--scaling N1,N2,...] [--set ...] [--json]   (watersim.bench_command)
+    watersim bench --against DUALSPHYSICS --gencase GENCASE --xml CASE.xml ... [--interval S]
+                   [--rounds R] [--cpu N] [--workdir DIR] [--json]   (watersim.bench_against)
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
 
