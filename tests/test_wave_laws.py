@@ -1,5 +1,6 @@
 """The wave-maker laws beyond Biesel and Madsen: the stream-function wave (Rienecker & Fenton
-1981) and its piston law, the choice of theory by Ursell number, the stroke gain.
+1981) and its piston law, the first-order cnoidal wave and its piston law, the choice of theory
+by Ursell number, the stroke gain.
 
 Reference values: "fenton.m" is the steady wave H = 0.2 m, d = 0.5 m, L = 2 m, Euler's current
 criterion, N = 30, g = 9.81, as computed by the MATLAB implementation of Fenton's method in
@@ -162,6 +163,117 @@ def test_piston_law_does_not_drift_and_shrinks_seed_002s_stroke() -> None:
 
 
 # ------------------------------------------------------------------------------------------------
+# the cnoidal wave, against an independent implementation of the elliptic functions
+
+
+def _agm_elliptic(u: np.ndarray, m: float, complement: float | None = None
+                  ) -> tuple[np.ndarray, float, float]:
+    """cn(u | m), K(m) and E(m) by the arithmetic-geometric mean (Abramowitz & Stegun 16.4 and
+    17.6: descending Landen transformation), independent of scipy's Cephes routines; 1 - m
+    as ``complement`` near m = 1."""
+    a, b, c = [1.0], [math.sqrt(1.0 - m if complement is None else complement)], [math.sqrt(m)]
+    while abs(c[-1]) > 1e-16:
+        a.append(0.5 * (a[-1] + b[-1]))
+        b.append(math.sqrt(a[-2] * b[-1]))
+        c.append(0.5 * (a[-2] - b[-2]))
+    n = len(a) - 1
+    phi = 2.0**n * a[n] * np.asarray(u, dtype=float)
+    for j in range(n, 0, -1):
+        phi = 0.5 * (phi + np.arcsin(c[j] / a[j] * np.sin(phi)))
+    K = math.pi / (2.0 * a[n])
+    E = K * (1.0 - sum(2.0 ** (j - 1) * c[j] ** 2 for j in range(n + 1)))
+    return np.cos(phi), K, E
+
+
+def test_agm_matches_the_printed_tables() -> None:
+    """Abramowitz & Stegun Table 17.1: K(0.5) = 1.85407 46773, E(0.5) = 1.35064 38810; and cn
+    at a quarter period is 0, cn(u | 0) = cos u."""
+    cn, K, E = _agm_elliptic(np.array([0.0]), 0.5)
+    assert (K, E) == pytest.approx((1.8540746773, 1.3506438810), abs=1e-10)
+    assert _agm_elliptic(np.array([K]), 0.5)[0][0] == pytest.approx(0.0, abs=1e-12)
+    assert _agm_elliptic(np.array([0.7]), 1e-30)[0][0] == pytest.approx(math.cos(0.7), abs=1e-14)
+
+
+@pytest.mark.parametrize("height,period,depth", [STANSBY, (0.04, 4.0, 0.3), (0.02, 12.0, 0.5)])
+def test_cnoidal_wave_is_wiegels(height: float, period: float, depth: float) -> None:
+    """The parameter m solves Wiegel's (1960) relations: ``L = sqrt(16 d^3 m / (3 H)) K``, ``c =
+    sqrt(g d) [1 + H/(m d) (1 - m/2 - 3E/(2K))] = L / T``, the trough ``H ((1 - E/K)/m - 1)``
+    (mean level zero), and the surface is ``eta_t + H cn^2(K theta / pi)``, with K, E and cn
+    computed independently; the cosine series carries the surface."""
+    wave = wt.cnoidal_wave(height, period, depth)
+    m = wave.parameter
+    theta = np.linspace(-math.pi, math.pi, 101)
+    _, K, E = _agm_elliptic(np.zeros(1), m)
+    cn, _, _ = _agm_elliptic(K * theta / math.pi, m)
+    length = math.sqrt(16.0 * depth**3 * m / (3.0 * height)) * K
+    assert wave.wavelength == pytest.approx(length, rel=1e-10)
+    c = math.sqrt(G * depth) * (1.0 + height / (m * depth) * (1.0 - m / 2.0 - 1.5 * E / K))
+    assert wave.celerity == pytest.approx(c, rel=1e-9)
+    assert wave.celerity * period == pytest.approx(length, rel=1e-9)
+    assert wave.trough == pytest.approx(height * ((1.0 - E / K) / m - 1.0), rel=1e-10)
+    eta = wave.trough + height * cn**2
+    assert np.asarray(wave.elevation(theta / wave.wavenumber, 0.0)) == pytest.approx(
+        eta, abs=1e-10 * height)
+    series = np.cos(np.outer(theta, np.arange(wave.elevation_coefficients.size)))
+    assert series @ wave.elevation_coefficients == pytest.approx(eta, abs=1e-10 * height)
+    assert wave.elevation_coefficients[0] == pytest.approx(0.0, abs=1e-12 * height)
+    assert wave.ursell_number == pytest.approx(16.0 / 3.0 * m * K**2, rel=1e-9)
+
+
+def test_a_low_cnoidal_wave_is_the_linear_long_wave() -> None:
+    """m -> 0: eta -> (H/2) cos theta, c -> sqrt(g d) (1 - (kd)^2 / 6), the long-wave limit of
+    linear dispersion (here kd = 0.25), 19 (kd)^4 / 360 from sqrt(tanh(kd) / kd)."""
+    depth, period, height = 1.0, 8.0, 1e-5
+    wave = wt.cnoidal_wave(height, period, depth)
+    assert wave.parameter < 1e-3
+    kd = wave.wavenumber * depth
+    assert wave.celerity / math.sqrt(G * depth) == pytest.approx(1.0 - kd**2 / 6.0, rel=1e-6)
+    assert wave.wavenumber == pytest.approx(float(wt.wavenumber(period, depth)), rel=0.06 * kd**4)
+    theta = np.linspace(-math.pi, math.pi, 41)
+    eta = np.asarray(wave.elevation(theta / wave.wavenumber, 0.0))
+    assert eta == pytest.approx(0.5 * height * np.cos(theta), abs=1e-3 * height)
+
+
+@pytest.mark.parametrize("period", [20.0, 60.0])
+def test_a_long_cnoidal_wave_is_the_solitary_wave(period: float) -> None:
+    """m -> 1: the crest is ``H sech^2(sqrt(3H/(4d)) x/d)`` above the trough
+    (:func:`watersim.wave_theory.solitary_wave_elevation`), the trough ``-H/K`` and the
+    celerity ``sqrt(g d) (1 + H/(2d) - 3H/(2dK))`` tend to 0 and to the solitary wave's."""
+    depth, height = 0.5, 0.1
+    wave = wt.cnoidal_wave(height, period, depth)
+    _, K, _ = _agm_elliptic(np.zeros(1), wave.parameter, wave.complement)
+    assert wave.complement < 1e-6
+    x = np.linspace(-6.0 * depth, 6.0 * depth, 61)
+    solitary = np.asarray(wt.solitary_wave_elevation(x, 0.0, height, depth))
+    assert np.asarray(wave.elevation(x, 0.0)) - wave.trough == pytest.approx(
+        solitary, abs=1e-5 * height)
+    assert wave.trough * K / height == pytest.approx(-1.0, abs=2.0 / K)
+    factor = wave.celerity / math.sqrt(G * depth)
+    assert (factor - 1.0 - height / (2.0 * depth)) * K * depth / height == pytest.approx(
+        -1.5, abs=2.0 / K)
+
+
+def test_cnoidal_piston_moves_with_the_depth_averaged_velocity() -> None:
+    """Goring's flux law exactly (no Biesel or Madsen corrections): dX/dt = c eta / (d + eta)
+    at the paddle face; the paddle returns to its start after each wave."""
+    wave = wt.cnoidal_wave(*STANSBY)
+    motion = wt.cnoidal_piston_motion(wave)
+    t = np.linspace(0.0, wave.period, 240, endpoint=False)
+    x, u = motion.motion(t, ramp_periods=0.0)
+    eta = np.asarray(wave.elevation(np.asarray(x), t))
+    flux_velocity = wave.celerity * eta / (STANSBY[2] + eta)
+    assert np.max(np.abs(u - flux_velocity)) < 1e-6 * np.max(np.abs(flux_velocity))
+    end, _ = motion.motion(np.array([wave.period, 3.0 * wave.period]), ramp_periods=0.0)
+    assert np.asarray(end) == pytest.approx(0.0, abs=1e-9 * motion.stroke)
+
+
+def test_no_cnoidal_wave_too_short_for_the_long_wave_expansion() -> None:
+    with pytest.raises(ValueError, match=r"^period: no first-order cnoidal wave .* shortest is T ="
+                                         r" [0-9.]+ s \(Ursell number 1\.0, cnoidal range"):
+        wt.cnoidal_wave(0.02, 1.0, 0.34)
+
+
+# ------------------------------------------------------------------------------------------------
 # the theory a RegularWave follows
 
 
@@ -195,6 +307,36 @@ def test_auto_takes_the_stream_function_beyond_it() -> None:
     assert all(c[2] == pytest.approx(math.pi / 2) for c in target["components"])
 
 
+def test_auto_takes_the_cnoidal_law_for_nearly_solitary_waves() -> None:
+    """Beyond Ursell 500 (d = 0.34 m, H = 0.1 m, T = 7 s: U = 412; 8 s: U = 545)."""
+    assert wt.choose_regular_theory(0.1, 7.0, 0.34) == "stream_function"
+    assert wt.choose_regular_theory(0.1, 8.0, 0.34) == "cnoidal"
+    assert wt.choose_regular_theory(0.1, 8.0, 0.34, paddle="flap") == "linear"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # within the cnoidal law's range: no warning
+        scene = _scene(ws.RegularWave(height=0.1, period=8.0), depth=0.34)
+    assert scene.describe()["theory"] == "cnoidal"
+    motion = wt.cnoidal_piston_motion(wt.cnoidal_wave(0.1, 8.0, 0.34))
+    components = np.asarray(scene.law.law["components"])
+    assert components[:, 0] == pytest.approx(motion.stroke_amplitudes,
+                                             abs=1e-9 * motion.stroke_amplitudes[0])
+
+
+def test_a_forced_cnoidal_law_warns_outside_its_range_and_needs_a_piston() -> None:
+    with pytest.warns(wt.WaveValidityWarning) as caught:
+        _scene(ws.RegularWave(height=0.02, period=1.6, theory="cnoidal"))
+    messages = [str(w.message) for w in caught]
+    assert any("Ursell number H L^2/d^3 = 3.6 is below 8 pi^2/3 = 26.3" in m for m in messages)
+    assert any("kd = 0.80 > pi/4 = 0.79" in m for m in messages)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # seed 002's wave is in range (U = 48, kd = 0.5)
+        _scene(ws.RegularWave(*STANSBY[:2], theory="cnoidal"))
+    with pytest.raises(ws.SceneError, match=r"^wave\.theory: the cnoidal law moves a piston"):
+        _scene(ws.RegularWave(*STANSBY[:2], theory="cnoidal"), paddle=ws.Flap())
+    with pytest.raises(ws.SceneError, match=r"^wave\.period: no first-order cnoidal wave"):
+        _scene(ws.RegularWave(height=0.02, period=1.0, theory="cnoidal"))
+
+
 def test_a_flap_keeps_its_order_and_warns_with_the_ursell_number() -> None:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -210,7 +352,7 @@ def test_forced_stream_function_in_deep_water_warns() -> None:
 
 
 def test_stroke_gain_scales_the_whole_motion_and_the_absorption_gain() -> None:
-    for theory in ("stokes2", "stream_function"):
+    for theory in ("stokes2", "stream_function", "cnoidal"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", wt.WaveValidityWarning)  # stokes2 at Ursell 48
             base = _scene(ws.RegularWave(height=0.105, period=2.42, theory=theory)).law

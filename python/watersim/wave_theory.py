@@ -26,13 +26,19 @@ from __future__ import annotations
 import functools
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
+from scipy import special
 
 __all__ = [
+    "CNOIDAL_KD_LIMIT",
+    "CNOIDAL_URSELL_LIMIT",
+    "CnoidalWave",
+    "FLUX_THEORIES",
     "G",
     "KINEMATIC_BREAKING_RATIO",
     "MADSEN_URSELL_LIMIT",
@@ -52,6 +58,8 @@ __all__ = [
     "breaker_type",
     "celerity",
     "check_wave",
+    "cnoidal_piston_motion",
+    "cnoidal_wave",
     "choose_regular_theory",
     "chue_runup",
     "deep_water_wavelength",
@@ -76,6 +84,7 @@ __all__ = [
     "piston_height_to_stroke",
     "piston_motion",
     "piston_stroke",
+    "regular_flux_motion",
     "regular_paddle_motion",
     "second_order_piston_motion",
     "second_order_stroke",
@@ -931,8 +940,26 @@ def _solve_fourier(
     return solution
 
 
+class _SteadyWave:
+    """The angular frequency and wavelength of a steady periodic wave's ``period`` and
+    ``wavenumber``."""
+
+    period: float
+    wavenumber: float
+
+    @property
+    def omega(self) -> float:
+        """2 pi / T [rad/s]."""
+        return 2.0 * math.pi / self.period
+
+    @property
+    def wavelength(self) -> float:
+        """L = 2 pi / k [m]."""
+        return 2.0 * math.pi / self.wavenumber
+
+
 @dataclass(frozen=True)
-class StreamFunctionWave:
+class StreamFunctionWave(_SteadyWave):
     """A steady, periodic wave of permanent form by Fourier approximation: Rienecker & Fenton's
     (1981) stream-function method in the form of Fenton (1988, "The numerical solution of steady
     water wave problems", Computers & Geosciences 14).
@@ -971,16 +998,6 @@ class StreamFunctionWave:
     mean_speed: float
     volume_flux: float
     bernoulli: float
-
-    @property
-    def omega(self) -> float:
-        """2 pi / T [rad/s]."""
-        return 2.0 * math.pi / self.period
-
-    @property
-    def wavelength(self) -> float:
-        """L = 2 pi / k [m]."""
-        return 2.0 * math.pi / self.wavenumber
 
     @property
     def eulerian_current(self) -> float:
@@ -1110,7 +1127,8 @@ def stream_function_wave(
 
 @dataclass(frozen=True)
 class StreamFunctionPaddleMotion:
-    """The piston motion generating a :class:`StreamFunctionWave`, as harmonics of omega.
+    """The piston motion generating a :class:`StreamFunctionWave` or a :class:`CnoidalWave`, as
+    harmonics of omega.
 
     The law, for t >= 0 (r(t) the ramp of :meth:`motion`)::
 
@@ -1127,7 +1145,7 @@ class StreamFunctionPaddleMotion:
         elevation_amplitudes: e_n [m], n = 1, 2, ...
     """
 
-    wave: StreamFunctionWave
+    wave: StreamFunctionWave | CnoidalWave
     phase: float
     stroke_amplitudes: FloatArray
     elevation_amplitudes: FloatArray
@@ -1198,20 +1216,9 @@ def stream_function_piston_motion(
         raise ValueError("wave: a paddle in a closed flume makes the zero-mass-transport wave "
                          "(current = 'stokes')")
     ph = float(_finite("phase", phase))
-    d, k, omega = wave.depth, wave.wavenumber, wave.omega
-    vartheta = 2.0 * math.pi * np.arange(samples) / samples
-    j = np.arange(1, wave.elevation_coefficients.size)
-    e = wave.elevation_coefficients[1:]
-    integral = np.sin(np.multiply.outer(vartheta, j)) @ (e / j)
-    eta = np.cos(np.multiply.outer(vartheta, j)) @ e
-    t = (vartheta + integral / d) / omega
-    x = integral / (k * d)
-    # (2/T) int_0^T f(t) g(n omega t) dt with dt = (d + eta) / (omega d) dvartheta
-    weight = (1.0 + eta / d) * (2.0 / samples)
-    n = np.arange(1, j.size + 1)
-    angle = np.multiply.outer(omega * t, n)
-    strokes = (x * weight) @ np.sin(angle)
-    elevations = (eta * weight) @ np.cos(angle)
+    d = wave.depth
+    strokes, elevations = _flux_law_harmonics(wave.elevation_coefficients, wave.wavenumber, d,
+                                              wave.omega, samples)
     # the flux law's own first- and second-order parts replaced by Biesel's and Madsen's
     second_order = regular_paddle_motion(wave.height, wave.period, d, "piston", 2, 0.0, wave.g)
     k1 = second_order.wavenumber
@@ -1221,13 +1228,236 @@ def stream_function_piston_motion(
     if strokes.size > 1:
         flux_second = (0.5 * a2 - a * a / (2.0 * d)) / (k1 * d)
         strokes[1] += second_order.second_order_amplitude - flux_second
+    return _flux_paddle_motion(wave, ph, strokes, elevations)
+
+
+def _flux_law_harmonics(
+    coefficients: FloatArray, k: float, depth: float, omega: float, samples: int
+) -> tuple[FloatArray, FloatArray]:
+    """The harmonics of Goring's flux law ``dX/dt = c eta / (d + eta)`` for the surface
+    ``eta(theta) = sum_j coefficients[j] cos(j theta)`` (``coefficients[0]``, the mean, is
+    left out) of a wave of wavenumber ``k`` and angular frequency ``omega``: the paddle's
+    stroke amplitudes of ``sin(n omega t)`` and the elevation amplitudes of ``cos(n omega t)``
+    at its face, n = 1 .. len(coefficients) - 1 (see :func:`stream_function_piston_motion`)."""
+    vartheta = 2.0 * math.pi * np.arange(samples) / samples
+    j = np.arange(1, coefficients.size)
+    e = coefficients[1:]
+    integral = np.sin(np.multiply.outer(vartheta, j)) @ (e / j)
+    eta = np.cos(np.multiply.outer(vartheta, j)) @ e
+    t = (vartheta + integral / depth) / omega
+    x = integral / (k * depth)
+    # (2/T) int_0^T f(t) g(n omega t) dt with dt = (d + eta) / (omega d) dvartheta
+    weight = (1.0 + eta / depth) * (2.0 / samples)
+    angle = np.multiply.outer(omega * t, j)
+    return (x * weight) @ np.sin(angle), (eta * weight) @ np.cos(angle)
+
+
+def _flux_paddle_motion(
+    wave: StreamFunctionWave | CnoidalWave, phase: float, strokes: FloatArray,
+    elevations: FloatArray,
+) -> StreamFunctionPaddleMotion:
+    """The motion with harmonics below 1e-7 of the first dropped."""
     keep = int(np.max(np.nonzero(np.abs(strokes) > 1e-7 * abs(strokes[0]))[0])) + 1
     return StreamFunctionPaddleMotion(
         wave=wave,
-        phase=ph,
+        phase=phase,
         stroke_amplitudes=strokes[:keep],
         elevation_amplitudes=elevations[:keep],
     )
+
+
+# ------------------------------------------------------------------------------------------------
+# Cnoidal waves (first order)
+
+CNOIDAL_URSELL_LIMIT = 500.0
+"""Ursell number ``H L^2 / d^3`` (linear L) beyond which ``"auto"`` takes the cnoidal law
+instead of the stream-function law: there the Fourier method needs 64 modes or more (with 32
+it resolves H/d = 0.3 at L/d = 40, U = 476, but not H/d = 0.4 at the same length, U = 635)
+and the wave is nearly solitary (elliptic parameter m > 1 - 1e-7)."""
+
+CNOIDAL_KD_LIMIT = math.pi / 4.0
+"""kd up to which first-order cnoidal theory is used, d/L < 1/8 (Wiegel 1960; Dean &
+Dalrymple 1991, ch. 11): :func:`check_wave` warns beyond it."""
+
+
+@dataclass(frozen=True)
+class CnoidalWave(_SteadyWave):
+    """A first-order cnoidal wave (Korteweg & de Vries 1895; Wiegel 1960; Svendsen 2006,
+    "Introduction to nearshore hydrodynamics", ch. 6) about still water, travelling towards +x::
+
+        eta = eta_t + H cn^2(K(m) theta / pi | m),    theta = k x - omega t
+
+    (crest at theta = 0), with the trough ``eta_t = H ((1 - E/K) / m - 1)`` that makes the mean
+    level zero, the wavelength ``L = sqrt(16 d^3 m / (3 H)) K(m)`` (so ``H L^2 / d^3 = 16/3 m
+    K^2``) and the celerity ``c = sqrt(g d) [1 + H/(m d) (1 - m/2 - 3E/(2K))]``, K and E the
+    complete elliptic integrals of the parameter m. As m -> 0 it is the linear wave with the
+    long-wave dispersion ``c = sqrt(g d) (1 - (kd)^2 / 6)``; as m -> 1 the solitary wave ``H
+    sech^2(sqrt(3H/(4d^3)) (x - c t))``, ``c = sqrt(g d) (1 + H/(2d))``.
+
+    Attributes:
+        height: H [m]; period: T [s]; depth: d [m]; g: [m/s^2].
+        parameter: the elliptic parameter m (0 < m < 1) [-].
+        complement: 1 - m, held apart for waves near the solitary limit [-].
+        wavenumber: k = 2 pi / L [rad/m].
+        celerity: c = L / T [m/s].
+        trough: eta_t, the trough's elevation above still water (negative) [m].
+        elevation_coefficients: E_0..E_N of ``eta = sum_j E_j cos(j theta)`` [m] (E_0 = 0 to
+            rounding), to 1e-12 H.
+    """
+
+    height: float
+    period: float
+    depth: float
+    g: float
+    parameter: float
+    complement: float
+    wavenumber: float
+    celerity: float
+    trough: float
+    elevation_coefficients: FloatArray
+
+    @property
+    def ursell_number(self) -> float:
+        """``H L^2 / d^3`` with the cnoidal wavelength, ``16/3 m K(m)^2`` [-]."""
+        return self.height * self.wavelength**2 / self.depth**3
+
+    def elevation(self, x: npt.ArrayLike, t: npt.ArrayLike) -> FloatArray:
+        """Surface elevation above the still-water level eta(x, t) [m], from the elliptic
+        function itself (not the series)."""
+        theta = self.wavenumber * _finite("x", x) - self.omega * _finite("t", t)
+        return _out(_cnoidal_surface(theta, self.height, self.parameter, self.complement,
+                                     self.trough))
+
+
+def _elliptic_integrals(m: float, complement: float) -> tuple[float, float]:
+    """K(m) and E(m), K from 1 - m near the solitary limit."""
+    return float(special.ellipkm1(complement)), float(special.ellipe(m))
+
+
+def _cnoidal_surface(theta: FloatArray, height: float, m: float, complement: float,
+                     trough: float) -> FloatArray:
+    K, _ = _elliptic_integrals(m, complement)
+    # cn^2 has period 2K: reduce theta to (-pi, pi] first, where ellipj is most accurate
+    reduced = np.angle(np.exp(1j * np.asarray(theta, dtype=np.float64)))
+    _, cn, _, _ = special.ellipj(K * reduced / math.pi, m)
+    return np.asarray(trough + height * cn * cn)
+
+
+def cnoidal_wave(height: float, period: float, depth: float, g: float = G) -> CnoidalWave:
+    """The first-order cnoidal wave (:class:`CnoidalWave`) of height H and period T in depth d.
+
+    The parameter m solves ``L(m) = c(m) T``: in units of d and sqrt(d/g), ``T' = sqrt(16 m /
+    (3 H')) K(m) / (c(m) / sqrt(g d))``. The right-hand side is infinite where the first-order
+    celerity vanishes (small m: a wave too short and high for the long-wave expansion) and as m
+    -> 1, with one minimum between; the physical root is the one on the long-wave side of the
+    minimum (c -> sqrt(g d) as H -> 0), found by bisection in log m (m < 1/2) and log(1 - m).
+
+    Raises:
+        ValueError: naming ``period`` when T is below the minimum (no first-order cnoidal wave
+            of that height and period; the stream-function law makes it), or another bad
+            argument.
+    """
+    H = float(_positive("height", height))
+    T = float(_positive("period", period))
+    d = float(_positive("depth", depth))
+    g_ = float(_positive("g", g))
+    h = H / d
+    tau = T * math.sqrt(g_ / d)
+
+    def parameter(s: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
+        # m and 1 - m from s: m = e^s / 2 for s < 0, 1 - m = e^-s / 2 beyond (m = 1/2 at 0)
+        ss = np.asarray(s, dtype=np.float64)
+        small = 0.5 * np.exp(np.minimum(ss, 0.0))
+        near_one = 0.5 * np.exp(-np.maximum(ss, 0.0))
+        return np.where(ss < 0.0, small, 1.0 - near_one), np.where(ss < 0.0, 1.0 - small, near_one)
+
+    def period_of(s: npt.ArrayLike) -> FloatArray:
+        m, p = parameter(s)
+        K = special.ellipkm1(p)
+        factor = 1.0 + h / m * (1.0 - 0.5 * m - 1.5 * special.ellipe(m) / K)
+        with np.errstate(divide="ignore"):
+            return np.where(factor > 0.0, np.sqrt(16.0 * m / (3.0 * h)) * K / factor, np.inf)
+
+    # m from 1e-16 (where the factor is negative for any H/d > 1e-16) to 1 - 1e-300
+    grid = np.linspace(-36.0, 690.0, 6000)
+    periods = period_of(grid)
+    lowest = int(np.argmin(periods))
+    if not tau > periods[lowest]:
+        raise ValueError(
+            f"period: no first-order cnoidal wave of H = {H:g} m and T = {T:g} s in d = {d:g} m: "
+            f"at this height the shortest is T = {periods[lowest] * math.sqrt(d / g_):.3g} s "
+            f"(Ursell number {float(ursell_number(H, T, d, g_)):.1f}, cnoidal range above "
+            f"{MADSEN_URSELL_LIMIT:.1f}: the long-wave expansion does not hold; the "
+            "stream-function law makes the wave)"
+        )
+    if tau > periods[-1]:
+        raise ValueError(f"period: T = {T:g} s is too long for double precision (1 - m < 1e-300)")
+    above = lowest + int(np.argmax(periods[lowest:] >= tau))
+    root = _bisect(lambda q: float(period_of(q)) - tau, float(grid[above - 1]),
+                   float(grid[above]))
+    m, p = (float(v) for v in parameter(root))
+    K, E = _elliptic_integrals(m, p)
+    length = math.sqrt(16.0 * d**3 * m / (3.0 * H)) * K
+    trough = H * ((1.0 - E / K) / m - 1.0)
+    # the surface's cosine series, on enough points that the last quarter is below 1e-12 H
+    samples = 1024
+    while True:
+        theta = 2.0 * math.pi * np.arange(samples) / samples
+        spectrum = np.fft.rfft(_cnoidal_surface(theta, H, m, p, trough)) / samples
+        coefficients = 2.0 * spectrum.real
+        coefficients[0] = spectrum[0].real
+        if np.max(np.abs(coefficients[samples // 8 :])) < 1e-12 * H or samples >= 1 << 18:
+            break
+        samples *= 2
+    significant = np.nonzero(np.abs(coefficients) >= 1e-12 * H)[0]
+    return CnoidalWave(
+        height=H,
+        period=T,
+        depth=d,
+        g=g_,
+        parameter=m,
+        complement=p,
+        wavenumber=2.0 * math.pi / length,
+        celerity=length / T,
+        trough=trough,
+        elevation_coefficients=coefficients[: int(significant[-1]) + 1],
+    )
+
+
+def _bisect(f: Callable[[float], float], a: float, b: float) -> float:
+    """The root of ``f`` between ``a`` and ``b`` (f(a) < 0 <= f(b)), to rounding."""
+    fa = f(a)
+    for _ in range(200):
+        mid = 0.5 * (a + b)
+        if mid in (a, b):
+            break
+        fm = f(mid)
+        if (fm < 0.0) == (fa < 0.0):
+            a, fa = mid, fm
+        else:
+            b = mid
+    return 0.5 * (a + b)
+
+
+def cnoidal_piston_motion(
+    wave: CnoidalWave, phase: float = 0.0, samples: int = 4096
+) -> StreamFunctionPaddleMotion:
+    """The piston motion making a cnoidal ``wave``: Goring's (1978) flux law ``dX/dt = c eta /
+    (d + eta)``, the depth-averaged velocity of a long wave at the paddle face (exact for
+    the long waves cnoidal theory describes), integrated in closed form as in
+    :func:`stream_function_piston_motion` but without Biesel's and Madsen's corrections to its
+    first two harmonics (0.1 % of the first at kd = 0.5).
+
+    Args:
+        wave: a :class:`CnoidalWave`.
+        phase: phase delta [rad].
+        samples: quadrature points over one period.
+    """
+    ph = float(_finite("phase", phase))
+    n = max(samples, 4 * wave.elevation_coefficients.size)
+    strokes, elevations = _flux_law_harmonics(wave.elevation_coefficients, wave.wavenumber,
+                                              wave.depth, wave.omega, n)
+    return _flux_paddle_motion(wave, ph, strokes, elevations)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -1926,12 +2156,26 @@ def second_order_piston_motion(
 # Validity of a requested regular wave
 
 
-RegularTheory = Literal["linear", "stokes2", "stream_function"]
+RegularTheory = Literal["linear", "stokes2", "stream_function", "cnoidal"]
 
-REGULAR_THEORIES: tuple[str, ...] = ("auto", "linear", "stokes2", "stream_function")
+REGULAR_THEORIES: tuple[str, ...] = ("auto", "linear", "stokes2", "stream_function", "cnoidal")
 """The regular-wave generation theories: ``"linear"`` (Biesel), ``"stokes2"`` (Madsen's 1971
-second order), ``"stream_function"`` (:func:`stream_function_piston_motion`) and ``"auto"``
-(:func:`choose_regular_theory`)."""
+second order), ``"stream_function"`` (:func:`stream_function_piston_motion`), ``"cnoidal"``
+(:func:`cnoidal_piston_motion`) and ``"auto"`` (:func:`choose_regular_theory`)."""
+
+FLUX_THEORIES: tuple[str, ...] = ("stream_function", "cnoidal")
+"""The theories whose piston follows the wave's depth-averaged velocity (Goring's flux law)."""
+
+
+def regular_flux_motion(
+    theory: Literal["stream_function", "cnoidal"], height: float, period: float, depth: float,
+    phase: float = 0.0, g: float = G,
+) -> StreamFunctionPaddleMotion:
+    """The piston motion of a flux-law ``theory`` for the regular wave (H, T, d)."""
+    _choice("theory", theory, FLUX_THEORIES)
+    if theory == "cnoidal":
+        return cnoidal_piston_motion(cnoidal_wave(height, period, depth, g), phase)
+    return stream_function_piston_motion(stream_function_wave(height, period, depth, g=g), phase)
 
 
 def choose_regular_theory(
@@ -1943,11 +2187,13 @@ def choose_regular_theory(
     Within Madsen's range (Ursell number ``H L^2 / d^3`` up to 8 pi^2 / 3 ~ 26.3, FORMULAS §3)
     the paddle's ``order`` decides, first (``"linear"``) or second order (``"stokes2"``), as
     always; beyond it, in the cnoidal range where a second-order law makes spurious free
-    harmonics, a piston takes the stream-function law (a flap keeps its order and
-    :func:`check_wave` warns).
+    harmonics, a piston takes the stream-function law, and beyond :data:`CNOIDAL_URSELL_LIMIT`
+    (500), where the Fourier series needs many modes and the wave is nearly solitary, the
+    cnoidal law (a flap keeps its order and :func:`check_wave` warns).
     """
-    if paddle == "piston" and float(ursell_number(height, period, depth, g)) > MADSEN_URSELL_LIMIT:
-        return "stream_function"
+    ursell = float(ursell_number(height, period, depth, g))
+    if paddle == "piston" and ursell > MADSEN_URSELL_LIMIT:
+        return "cnoidal" if ursell > CNOIDAL_URSELL_LIMIT else "stream_function"
     return "stokes2" if order == 2 else "linear"
 
 
@@ -1973,7 +2219,9 @@ def check_wave(
        (``a2 > H/8``), where the expansion of FORMULAS §4 no longer describes the wave.
     3. (stream function) kd above 1.5: the stream-function law's third and higher harmonics
        come from the depth-averaged (long-wave) flux, which misrepresents them in deeper water
-       (its first two harmonics are Biesel's and Madsen's at any depth).
+       (its first two harmonics are Biesel's and Madsen's at any depth). (cnoidal) Ursell
+       number below 26.3 (Stokes range: the first-order cnoidal wave carries the long-wave
+       dispersion) or kd above pi/4 (d/L > 1/8, Wiegel 1960).
     4. Breaking at the paddle: ``H/d > 0.78`` (McCowan) or ``H > 0.142 L tanh(kd)`` (Miche).
     5. Paddle against depth (water-depth classes of Dean & Dalrymple 1991, ch. 3): a piston
        in deep water (kd > pi) moves the whole column although the wave motion decays with
@@ -1995,7 +2243,19 @@ def check_wave(
     L = 2.0 * math.pi / k
     problems: list[str] = []
     ursell = float(ursell_number(H, T, d, g))
-    if theory != "stream_function":
+    if theory == "cnoidal":
+        if ursell < MADSEN_URSELL_LIMIT:
+            problems.append(
+                f"Ursell number H L^2/d^3 = {ursell:.1f} is below 8 pi^2/3 ="
+                f" {MADSEN_URSELL_LIMIT:.1f}: cnoidal theory is for longer waves (range U >"
+                f" {MADSEN_URSELL_LIMIT:.1f}); theory 'stokes2' or 'stream_function' fits"
+            )
+        if kd > CNOIDAL_KD_LIMIT:
+            problems.append(
+                f"kd = {kd:.2f} > pi/4 = {CNOIDAL_KD_LIMIT:.2f} (d/L > 1/8): beyond first-order"
+                f" cnoidal theory (Ursell number {ursell:.1f}); theory 'stream_function' fits"
+            )
+    elif theory != "stream_function":
         if ursell > MADSEN_URSELL_LIMIT:
             problems.append(
                 f"Ursell number H L^2/d^3 = {ursell:.1f} exceeds 8 pi^2/3 ="

@@ -101,10 +101,12 @@ class RegularWave(_Wave):
         phase: phase delta of the paddle motion ``X = (S/2) sin(omega t + delta) + ...`` [rad].
         theory: the generation law. ``"auto"``: the paddle's ``order`` (Biesel at order 1,
             Madsen's second order at 2) up to Madsen's Ursell number 8 pi^2/3 ~ 26.3, beyond it
-            the stream-function law (a piston); ``"linear"`` (needs ``paddle.order = 1``),
-            ``"stokes2"`` (``paddle.order = 2``) or ``"stream_function"`` (Fenton's Fourier
-            wave, piston only) force one. A theory outside its range gives a
-            WaveValidityWarning with the Ursell number.
+            the stream-function law up to Ursell 500 and the cnoidal law beyond (a piston;
+            :func:`watersim.wave_theory.choose_regular_theory`); ``"linear"`` (needs
+            ``paddle.order = 1``), ``"stokes2"`` (``paddle.order = 2``), ``"stream_function"``
+            (Fenton's Fourier wave) or ``"cnoidal"`` (first-order cnoidal wave; both piston
+            only) force one. A theory outside its range gives a WaveValidityWarning with the
+            Ursell number.
         stroke_gain: factor on the whole paddle motion, to calibrate against a measured height
             (e.g. target H / measured H).
     """
@@ -145,10 +147,10 @@ class RegularWave(_Wave):
                 f"wave.theory: {self.theory!r} is generation at order {needs}, but "
                 f"paddle.order = {paddle.order}; set paddle.order = {needs} or theory = 'auto'"
             )
-        if self.theory == "stream_function" and paddle.kind != "piston":
+        if self.theory in wt.FLUX_THEORIES and paddle.kind != "piston":
             raise SceneError(
-                "wave.theory: the stream-function law moves a piston with the wave's "
-                "depth-averaged velocity; use a Piston"
+                f"wave.theory: the {self.theory.replace('_', '-')} law moves a piston with the "
+                "wave's depth-averaged velocity; use a Piston"
             )
 
     def warn(self, paddle: Paddle, depth: float, g: float) -> None:
@@ -157,10 +159,11 @@ class RegularWave(_Wave):
 
     def law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
         """Biesel's first-order stroke, with the second harmonic for ``"stokes2"`` (Madsen's
-        1971 for a piston, Schaffer's 1996 for a flap), or the stream-function law's harmonics;
-        all times ``stroke_gain``."""
-        if self.generation_theory(paddle, depth, g) == "stream_function":
-            return self._stream_function_law(paddle, depth, g)
+        1971 for a piston, Schaffer's 1996 for a flap), or the stream-function or cnoidal law's
+        harmonics; all times ``stroke_gain``."""
+        theory = self.generation_theory(paddle, depth, g)
+        if theory in wt.FLUX_THEORIES:
+            return self._flux_law(theory, paddle, depth, g)
         try:
             law = wt.regular_paddle_motion(
                 self.height, self.period, depth, paddle.kind, paddle.order, self.phase, g
@@ -194,15 +197,17 @@ class RegularWave(_Wave):
             absorption_wavenumbers=(None, 2.0 * law.wavenumber)[:len(target)],
         )
 
-    def _stream_function_law(self, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
-        """The harmonics of :func:`watersim.wave_theory.stream_function_piston_motion`."""
+    def _flux_law(self, theory: str, paddle: Paddle, depth: float, g: float) -> PaddleLaw:
+        """The harmonics of :func:`watersim.wave_theory.stream_function_piston_motion` or
+        :func:`watersim.wave_theory.cnoidal_piston_motion`."""
         try:
-            wave = wt.stream_function_wave(self.height, self.period, depth, g=g)
+            motion = wt.regular_flux_motion(
+                theory, self.height, self.period, depth, self.phase, g  # type: ignore[arg-type]
+            )
         except ValueError as exc:
             raise SceneError(f"wave.{exc}") from None
-        motion = wt.stream_function_piston_motion(wave, self.phase)
         gain = self.stroke_gain
-        omega = wave.omega
+        omega = motion.omega
         strokes = _quantised(motion.stroke_amplitudes)
         components = [[a * gain, n * omega, n * self.phase]
                       for n, a in enumerate(strokes, start=1)]
