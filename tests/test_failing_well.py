@@ -362,8 +362,10 @@ BUILDERS = [
                     paddle=ws.Flap()), "wave.theory", "Piston"),
     (lambda: ws.RegularWave(height=0.05, period=1.2, stroke_gain=0.0), "wave.stroke_gain",
      "must be positive"),
-    (lambda: ws.RegularWave(height=0.05, period=1.2, theory="cnoidal"), "wave.theory",
-     "stream_function"),
+    (lambda: ws.RegularWave(height=0.05, period=1.2, theory="fenton"), "wave.theory",
+     "cnoidal"),
+    (lambda: _flume(wave=ws.RegularWave(height=1e300, period=1.2, theory="cnoidal")),
+     "wave.height", "no steady wave"),
     (lambda: ws.Flume(length=3.0, depth=0.3).scene(ws.SolitaryWave(height=1e-300)), "dp",
      "fluid particles"),
 ]

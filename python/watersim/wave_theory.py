@@ -1049,6 +1049,19 @@ class StreamFunctionWave(_SteadyWave):
         return _out(u), _out(w)
 
 
+def _highest_steady_wave(H: float, T: float, d: float, g: float) -> tuple[float, str]:
+    """The highest wave of period T in depth d (Williams 1981, at the linear wavelength) and
+    the refusal naming ``height``, raised at once when H is beyond any steady wave: a nonlinear
+    wave is longer than the linear one, and its highest wave higher, but by less than a quarter
+    (Stokes' c^2 = g/k (1 + (k a)^2) at the deep-water limit ka = 0.44)."""
+    h_max = float(highest_wave_height(wavelength(T, d, g), d))
+    refusal = (f"height: no steady wave of H = {H:g} m (H/d = {H / d:.3g}) and T = {T:g} s in "
+               f"d = {d:g} m: the highest is about H = {h_max:.3g} m (Williams 1981)")
+    if H > 1.25 * h_max:
+        raise ValueError(refusal)
+    return h_max, refusal
+
+
 def stream_function_wave(
     height: float,
     period: float,
@@ -1084,13 +1097,7 @@ def stream_function_wave(
     if modes is not None and (isinstance(modes, bool) or not isinstance(modes, int) or modes < 4):
         raise ValueError(f"modes: must be an integer >= 4, got {modes!r}")
     length = float(wavelength(T, d, g_))
-    h_max = float(highest_wave_height(length, d))
-    refusal = (f"height: no steady wave of H = {H:g} m (H/d = {H / d:.3g}) and T = {T:g} s in "
-               f"d = {d:g} m: the highest is about H = {h_max:.3g} m (Williams 1981)")
-    # a nonlinear wave is longer than the linear one, and its highest wave higher, but by less
-    # than a quarter (Stokes' c^2 = g/k (1 + (k a)^2) at the deep-water limit ka = 0.44)
-    if H > 1.25 * h_max:
-        raise ValueError(refusal)
+    h_max, refusal = _highest_steady_wave(H, T, d, g_)
     # long waves need smaller steps than their height alone says
     steps = max(1, math.ceil(10.0 * H / h_max), math.ceil(float(ursell_number(H, T, d, g_)) / 50))
     tried = STREAM_FUNCTION_MODES if modes is None else (modes,)
@@ -1353,14 +1360,16 @@ def cnoidal_wave(height: float, period: float, depth: float, g: float = G) -> Cn
     minimum (c -> sqrt(g d) as H -> 0), found by bisection in log m (m < 1/2) and log(1 - m).
 
     Raises:
-        ValueError: naming ``period`` when T is below the minimum (no first-order cnoidal wave
-            of that height and period; the stream-function law makes it), or another bad
-            argument.
+        ValueError: naming ``height`` beyond the highest steady wave (as
+            :func:`stream_function_wave`), ``period`` when T is below the minimum (no
+            first-order cnoidal wave of that height and period; the stream-function law makes
+            it), or another bad argument.
     """
     H = float(_positive("height", height))
     T = float(_positive("period", period))
     d = float(_positive("depth", depth))
     g_ = float(_positive("g", g))
+    _highest_steady_wave(H, T, d, g_)
     h = H / d
     tau = T * math.sqrt(g_ / d)
 
