@@ -494,6 +494,7 @@ def test_stansby2d_case_plumbing() -> None:
         "crest_celerity": {"x": [5.42, 5.57, 5.67], "ratio": [0.1, 0.9, 0.6]},
     }
     errors, details = stansby_metrics(result)
+    assert "incident_first_harmonic" not in details  # no reflection analysis
     assert details["H_flat"] == pytest.approx(0.102)
     assert errors["H_flat"] == pytest.approx(0.003 / 0.105)
     assert errors["breaking_x_m"] == pytest.approx(0.24)  # 5.3 m: 0.24 m before 5.54 m
@@ -509,5 +510,16 @@ def test_stansby2d_case_plumbing() -> None:
     assert errors["celerity"] == pytest.approx(0.01)
     result["breaking"]["phase_averaged"]["position"] = 5.6
     assert stansby_metrics(result)[0]["breaking_x_m"] == 0.0
+    # the incident first harmonic against the target wave's (the Fourier wave's, or H/2)
+    result.update(still_water_depth=0.34,
+                  wave={"height": 0.105, "period": 2.42, "theory": "stream_function"},
+                  reflection={"incident_amplitude": 0.0441, "coefficient": 0.03})
+    details = stansby_metrics(result)[1]
+    first = float(wt.stream_function_wave(0.105, 2.42, 0.34).elevation_coefficients[1])
+    assert details["target_first_harmonic"] == pytest.approx(first)
+    assert details["incident_first_harmonic_error"] == pytest.approx(0.0441 / first - 1.0)
+    assert details["reflection_coefficient"] == 0.03
+    result["wave"]["theory"] = "stokes2"
+    assert stansby_metrics(result)[1]["target_first_harmonic"] == pytest.approx(0.0525)
     empty_errors, _ = stansby_metrics({"gauges": []})
     assert set(empty_errors) == set(errors) and all(v is None for v in empty_errors.values())

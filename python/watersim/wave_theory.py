@@ -2206,6 +2206,23 @@ def choose_regular_theory(
     return "stokes2" if order == 2 else "linear"
 
 
+def _cnoidal_range_problems(ursell: float, kd: float) -> list[str]:
+    """Why first-order cnoidal theory does not describe a wave of this Ursell number and kd."""
+    problems = []
+    if ursell < MADSEN_URSELL_LIMIT:
+        problems.append(
+            f"Ursell number H L^2/d^3 = {ursell:.1f} is below 8 pi^2/3 ="
+            f" {MADSEN_URSELL_LIMIT:.1f}: cnoidal theory is for longer waves (range U >"
+            f" {MADSEN_URSELL_LIMIT:.1f}); theory 'stokes2' or 'stream_function' fits"
+        )
+    if kd > CNOIDAL_KD_LIMIT:
+        problems.append(
+            f"kd = {kd:.2f} > pi/4 = {CNOIDAL_KD_LIMIT:.2f} (d/L > 1/8): beyond first-order"
+            f" cnoidal theory (Ursell number {ursell:.1f}); theory 'stream_function' fits"
+        )
+    return problems
+
+
 def check_wave(
     height: float,
     period: float,
@@ -2253,17 +2270,7 @@ def check_wave(
     problems: list[str] = []
     ursell = float(ursell_number(H, T, d, g))
     if theory == "cnoidal":
-        if ursell < MADSEN_URSELL_LIMIT:
-            problems.append(
-                f"Ursell number H L^2/d^3 = {ursell:.1f} is below 8 pi^2/3 ="
-                f" {MADSEN_URSELL_LIMIT:.1f}: cnoidal theory is for longer waves (range U >"
-                f" {MADSEN_URSELL_LIMIT:.1f}); theory 'stokes2' or 'stream_function' fits"
-            )
-        if kd > CNOIDAL_KD_LIMIT:
-            problems.append(
-                f"kd = {kd:.2f} > pi/4 = {CNOIDAL_KD_LIMIT:.2f} (d/L > 1/8): beyond first-order"
-                f" cnoidal theory (Ursell number {ursell:.1f}); theory 'stream_function' fits"
-            )
+        problems += _cnoidal_range_problems(ursell, kd)
     elif theory != "stream_function":
         if ursell > MADSEN_URSELL_LIMIT:
             problems.append(

@@ -994,8 +994,15 @@ CASES: dict[str, Case] = {
              "pair's mean still-water depth, without set-up. "
              "`details.crest_velocity_over_sqrt_gD_max`: the largest phase-averaged velocity "
              "under the crest over sqrt(g d) on those verticals, another reading of the seed's "
-             "\"maximum celerity ... 70~80 %\", which it draws from its velocity field.",
-             report_details=("H_flat", "breaking_x", "undertow_seaward_mean",
+             "\"maximum celerity ... 70~80 %\", which it draws from its velocity field. "
+             "`details.incident_first_harmonic_error`: the incident first harmonic over the "
+             "flat floor (analysis.json `reflection`, Mansard & Funke on 0.8, 1.1 and 1.8 m) "
+             "against the target wave's (the Fourier wave's 0.0443 m for the stream-function "
+             "law): the generated wave without the partial standing wave of the beach's "
+             "reflection, which moves the height at each flat-floor gauge by up to twice "
+             "`details.reflection_coefficient` (docs/wave-flume.md).",
+             report_details=("H_flat", "incident_first_harmonic_error", "breaking_x",
+                             "undertow_seaward_mean",
                              "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
              depth=0.34),
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "

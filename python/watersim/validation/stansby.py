@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import wave_theory as wt
 from ..flume import FlumeScene
 from ..flume_cases import STANSBY_GAUGES, STANSBY_UNDERTOW_GAUGES
 from . import metrics as m
@@ -43,6 +44,32 @@ def _distance_to_range(value: float, low: float, high: float) -> float:
     return max(low - value, 0.0, value - high)
 
 
+def _target_first_harmonic(wave: Mapping[str, Any], depth: float) -> float:
+    """The first harmonic of the wave the paddle law aims at [m]: the Fourier (stream-function)
+    or cnoidal wave's, H/2 for Biesel's and Madsen's laws."""
+    height, period, theory = wave["height"], wave["period"], wave.get("theory")
+    if theory in wt.FLUX_THEORIES:
+        target = (wt.cnoidal_wave(height, period, depth) if theory == "cnoidal"
+                  else wt.stream_function_wave(height, period, depth))
+        return float(target.elevation_coefficients[1])
+    return 0.5 * height
+
+
+def _incident_wave(result: Mapping[str, Any]) -> dict[str, Any]:
+    """The incident first harmonic over the flat floor (analysis.json ``reflection``: Mansard &
+    Funke on three gauges there) against the target's: what the paddle made, apart from the
+    partial standing wave the beach's reflection sets up along the flume, which moves the height
+    at any one gauge by up to twice the reflection coefficient."""
+    reflection, wave = result.get("reflection") or {}, result.get("wave") or {}
+    incident = reflection.get("incident_amplitude")
+    if incident is None or "height" not in wave or "still_water_depth" not in result:
+        return {}
+    target = _target_first_harmonic(wave, result["still_water_depth"])
+    return {"incident_first_harmonic": incident, "target_first_harmonic": target,
+            "incident_first_harmonic_error": incident / target - 1.0,
+            "reflection_coefficient": reflection.get("coefficient")}
+
+
 def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
                                                         dict[str, Any]]:
     """stansby2d's errors and the values behind them, from its analysis.json (``result``);
@@ -56,6 +83,7 @@ def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
     details["H_flat_by_x"] = flat
     details["H_flat"] = float(np.mean(heights)) if heights else None
     errors["H_flat"] = m.relative_error(details["H_flat"], STANSBY_HEIGHT) if heights else None
+    details.update(_incident_wave(result))
     # breaking point of the phase-averaged wave against gauges 8-10
     pa = (result.get("breaking") or {}).get("phase_averaged") or {}
     x_b = pa.get("position")
