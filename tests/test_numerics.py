@@ -174,3 +174,28 @@ def test_scene_files_take_option_tables_and_set_their_parameters() -> None:
                  source="f.toml")
     text = sf.dumps(ws.Tank(viscosity=nm.Laminar(nu=2e-6)))
     assert sf.loads(text).builder.viscosity == nm.Laminar(nu=2e-6)
+
+
+def test_wall_models_are_options_of_their_own() -> None:
+    """``boundary`` takes a model's name, object or table like the other options; modified
+    DBC's slip mode is sent only when set, and the core fills in its own."""
+    assert ws.Tank(boundary="mdbc").boundary == nm.Mdbc()
+    assert ws.Tank(boundary={"type": "mdbc", "slip": "no_slip"}).boundary == \
+        nm.Mdbc(slip="no_slip")
+    assert ws.Tank(boundary="adami").to_scene()["boundary"] == {"model": "adami"}
+    assert nm.Mdbc().to_core() == {"model": "mdbc"}
+    assert nm.Mdbc(slip="free_slip").to_core() == {"model": "mdbc", "slip": "free_slip"}
+    resolved = ws.Tank(boundary="mdbc").resolved_scene()["boundary"]
+    assert resolved == {"model": "mdbc", "slip": nm.core_default("boundary.slip")}
+    assert nm.core_default("boundary.model") == "dbc"
+    with pytest.raises(ws.SceneError, match=r"^boundary\.slip: unknown value 'sticky'"):
+        ws.Tank(boundary=nm.Mdbc(slip="sticky"))
+    with pytest.raises(ws.SceneError, match=r"^boundary: unknown value 'mirror'"):
+        ws.Tank(boundary="mirror")
+    b = cli.builder_from_args("dambreak2d", ["boundary=mdbc", "boundary.slip=no_slip"])
+    assert b.boundary == nm.Mdbc(slip="no_slip")
+    with pytest.raises(OverrideError, match=r"^boundary\.slip: not a parameter of the "
+                                            r"boundary model 'dbc'"):
+        cli.builder_from_args("dambreak2d", ["boundary.slip=no_slip"])
+    assert sf.loads(sf.dumps(ws.Tank(boundary=nm.Mdbc(slip="no_slip")))).builder.boundary == \
+        nm.Mdbc(slip="no_slip")

@@ -84,7 +84,7 @@ def test_scene_defaults_are_what_the_core_fills_in() -> None:
     for key, value in defaults.items():
         if not isinstance(value, dict):
             assert resolved[key] == value, key
-    assert resolved["boundary"] == defaults["boundary"]
+    assert resolved["boundary"] == {"model": defaults["boundary"]["model"]}
     assert resolved["viscosity"] == {"model": defaults["viscosity"]["model"],
                                      "alpha": defaults["viscosity"]["alpha"]}
     sps = json.loads(_core.resolve_scene(json.dumps(

@@ -6,11 +6,11 @@ core parameter: a parameter left ``None`` is absent from the scene the core read
 core's default applies (:func:`core_default`, read from ``watersim._core.scene_defaults()``;
 ``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
 
-A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``shifting``) takes the
-option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``: that model with the
-core's parameters) or its scene-file table (``{"type": "laminar", "nu": 2e-6}``); a shifting
-coefficient alone may be given as a number. ``--set viscosity.alpha=0.03`` changes one parameter
-(:func:`from_settings`).
+A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``boundary``,
+``shifting``) takes the option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``:
+that model with the core's parameters) or its scene-file table
+(``{"type": "laminar", "nu": 2e-6}``); a shifting coefficient alone may be given as a number.
+``--set viscosity.alpha=0.03`` changes one parameter (:func:`from_settings`).
 
 The presets at the end are the numerics the built-in cases choose on purpose, with the reasons;
 they are the only numbers for core parameters on the Python side.
@@ -27,11 +27,12 @@ from typing import Any, ClassVar
 
 from . import _core
 from ._core import SceneError
-from .checks import _integer, _non_negative, _positive
+from .checks import _choice, _integer, _non_negative, _positive
 from .errors import did_you_mean
 from .overrides import Override, OverrideError
 
 __all__ = [
+    "BOUNDARIES",
     "BOUNDARY_MODELS",
     "CHOICES",
     "FORCE_PRECISIONS",
@@ -44,6 +45,7 @@ __all__ = [
     "FLUME2D_ALPHA",
     "FLUME_CASE",
     "INTEGRATORS",
+    "SLIP_MODES",
     "OPTION_CLASSES",
     "SETTABLE_PARAMETERS",
     "TAGS",
@@ -51,10 +53,13 @@ __all__ = [
     "VISCOSITIES",
     "WAVE_CARRYING",
     "WATER",
+    "Adami",
     "Artificial",
+    "Dbc",
     "Fourtakas",
     "Laminar",
     "LaminarSps",
+    "Mdbc",
     "Molteni",
     "NoDiffusion",
     "Option",
@@ -89,11 +94,6 @@ KERNELS: tuple[str, ...] = ("wendland", "cubic_spline")
 """Kernel names the core knows (Wendland C2 does not suffer the cubic spline's pairing
 instability)."""
 
-BOUNDARY_MODELS: tuple[str, ...] = ("dbc", "adami")
-"""Wall boundary models the core knows: ``"dbc"``, the dynamic boundary condition (Crespo et
-al. 2007; wall particles integrate continuity); ``"adami"``, Adami, Hu & Adams (2012; wall
-particles take the pressure extrapolated from their fluid neighbours at every step)."""
-
 FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
 """Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
 register instead of four, as DualSPHysics forms its forces; the state stays f64). Not with
@@ -102,7 +102,6 @@ register instead of four, as DualSPHysics forms its forces; the state stays f64)
 
 CHOICES: dict[str, tuple[str, ...]] = {
     "kernel": KERNELS,
-    "boundary": BOUNDARY_MODELS,
     "force_precision": FORCE_PRECISIONS,
 }
 """The options given by a word, and the words allowed."""
@@ -159,7 +158,9 @@ class Option:
         out: dict[str, Any] = {self.TAG_KEY: self.TAG} if self.TAG else {}
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
-            if value is not None:
+            if isinstance(value, str):
+                out[f.name] = value
+            elif value is not None:
                 out[f.name] = int(value) if str(f.type).startswith("int") else float(value)
         return out
 
@@ -312,14 +313,65 @@ class Shifting(Option):
                 f"particle divergence inside the water), got {t!r}")
 
 
+@dataclass(frozen=True, kw_only=True)
+class Dbc(Option):
+    """Dynamic boundary condition (Crespo et al. 2007): wall particles integrate continuity
+    from their fluid neighbours, their density floored at rho0."""
+
+    FIELD: ClassVar[str] = "boundary"
+    TAG: ClassVar[str] = "dbc"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Adami(Option):
+    """Adami, Hu & Adams (2012) walls: at every force evaluation each wall particle takes the
+    pressure extrapolated from its fluid neighbours (with the paddle's acceleration)."""
+
+    FIELD: ClassVar[str] = "boundary"
+    TAG: ClassVar[str] = "adami"
+
+
+SLIP_MODES: tuple[str, ...] = ("wall_velocity", "no_slip", "free_slip")
+"""The velocities a modified-DBC wall shows the fluid (``Slip`` in
+``crates/sph-core/src/scene/numerics.rs``)."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class Mdbc(Option):
+    """Modified dynamic boundary condition (English et al. 2022): each wall particle takes the
+    density at its ghost node (its mirror image through the wall surface, from the solids'
+    geometry), interpolated from the fluid with first-order corrected SPH and extrapolated
+    back along the normal; smooth wall pressures and no DBC gap.
+
+    Attributes:
+        slip: the velocity the wall shows the fluid: ``"wall_velocity"`` (its own, zero for a
+            fixed wall), ``"no_slip"`` (``2 v_wall - v_ghost``) or ``"free_slip"`` (the fluid's
+            tangential velocity, the normal one mirrored); one of :data:`SLIP_MODES`.
+    """
+
+    FIELD: ClassVar[str] = "boundary"
+    TAG: ClassVar[str] = "mdbc"
+
+    slip: str | None = None
+
+    def check(self) -> None:
+        if self.slip is not None:
+            _choice("boundary.slip", self.slip, SLIP_MODES)
+
+
 VISCOSITIES: tuple[type[Option], ...] = (Artificial, Laminar, LaminarSps)
 DIFFUSIONS: tuple[type[Option], ...] = (NoDiffusion, Molteni, Fourtakas)
 INTEGRATORS: tuple[type[Option], ...] = (Symplectic, Verlet)
+BOUNDARIES: tuple[type[Option], ...] = (Dbc, Adami, Mdbc)
+
+BOUNDARY_MODELS: tuple[str, ...] = tuple(cls.TAG for cls in BOUNDARIES)
+"""Wall boundary models the core knows, by name (one class each in :data:`BOUNDARIES`)."""
 
 OPTION_CLASSES: dict[str, tuple[type[Option], ...]] = {
     "viscosity": VISCOSITIES,
     "diffusion": DIFFUSIONS,
     "integrator": INTEGRATORS,
+    "boundary": BOUNDARIES,
     "shifting": (Shifting,),
 }
 """The builder fields that hold an option, and the classes each takes."""

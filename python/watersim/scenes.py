@@ -94,8 +94,9 @@ class SceneBuilder:
             (or ``"none"``, ``"molteni"``, ``"fourtakas"``).
         integrator: :class:`~watersim.numerics.Symplectic` or
             :class:`~watersim.numerics.Verlet` (or ``"symplectic"``, ``"verlet"``).
-        boundary: wall boundary model, ``"dbc"`` or ``"adami"`` (see
-            :data:`~watersim.numerics.BOUNDARY_MODELS`).
+        boundary: wall boundary model, :class:`~watersim.numerics.Dbc`,
+            :class:`~watersim.numerics.Adami` or :class:`~watersim.numerics.Mdbc` (or
+            ``"dbc"``, ``"adami"``, ``"mdbc"``).
         force_precision: arithmetic of the force loop's pair terms, ``"f64"`` or ``"f32"``
             (see :data:`~watersim.numerics.FORCE_PRECISIONS`).
         shifting: particle shifting, a :class:`~watersim.numerics.Shifting` (or its
@@ -135,7 +136,7 @@ class SceneBuilder:
     viscosity: nm.Artificial | nm.Laminar | nm.LaminarSps | str | None = None
     diffusion: nm.NoDiffusion | nm.Molteni | nm.Fourtakas | str | None = None
     integrator: nm.Symplectic | nm.Verlet | str | None = None
-    boundary: str | None = None
+    boundary: nm.Dbc | nm.Adami | nm.Mdbc | str | None = None
     force_precision: str | None = None
     shifting: nm.Shifting | float | None = None
     rho0: float | None = None
@@ -180,7 +181,7 @@ class SceneBuilder:
 
     def _validate_numerics(self) -> None:
         """The numerical parameters that are set (the options check their own)."""
-        for name in ("kernel", "boundary", "force_precision"):
+        for name in ("kernel", "force_precision"):
             if getattr(self, name) is not None:
                 _choice(name, getattr(self, name), nm.CHOICES[name])
         if self.coefh is not None and _positive("coefh", self.coefh) < nm.MIN_COEFH:
@@ -258,8 +259,6 @@ class SceneBuilder:
                 continue
             if isinstance(value, nm.Option):
                 physics[name] = value.to_core()
-            elif name == "boundary":
-                physics[name] = {"model": value}
             elif isinstance(value, str):
                 physics[name] = value
             else:

@@ -8,7 +8,7 @@
 //! signed distance), enough to cover the kernel support.
 
 use crate::error::{Error, Result};
-use crate::math::{Dim, Real, Vector};
+use crate::math::{Dim, Real, SurfacePoint, Vector};
 use crate::probes::NO_BODY;
 use crate::scene::{Obstacle, Scene};
 
@@ -36,34 +36,40 @@ enum Solid<D: Dim> {
 }
 
 impl<D: Dim> Solid<D> {
+    /// The nearest point of the solid's surface, by parry's projection, and whether `p` is
+    /// inside. Every query on a solid (sampling, body ids, modified DBC's wall normals) comes
+    /// from it.
+    fn project(&self, p: D::V) -> SurfacePoint<D::V> {
+        match self {
+            Solid::Box { min, max } => D::box_projection(*min, *max, p),
+            Solid::Plane { point, normal } => D::plane_projection(*point, *normal, p),
+            Solid::Profile { x, z, line } => profile_projection::<D>(x, z, line, p),
+            Solid::Mesh(mesh) => D::mesh_projection(mesh, p),
+        }
+    }
+
     /// Signed distance to the solid's surface, negative inside.
     fn signed_distance(&self, p: D::V) -> Real {
-        match self {
-            Solid::Box { min, max } => D::box_signed_distance(*min, *max, p),
-            Solid::Plane { point, normal } => D::plane_signed_distance(*point, *normal, p),
-            Solid::Profile { x, z, line } => profile_signed_distance(x, z, line, p.get(0), p.vertical()),
-            Solid::Mesh(mesh) => D::mesh_signed_distance(mesh, p),
-        }
+        self.project(p).signed_distance()
     }
 }
 
-/// Signed distance from `(px, pz)` to the bed polyline, by parry's 2D polyline projection;
-/// negative below the bed (inside the solid). Outside `[x[0], x[n-1]]` there is no solid.
-fn profile_signed_distance(x: &[Real], z: &[Real], line: &parry2d_f64::shape::Polyline, px: Real, pz: Real) -> Real {
+/// The nearest point of the bed polyline to `p` (in its x-z plane), by parry's 2D polyline
+/// projection; `p` is inside below the bed. Outside `[x[0], x[n-1]]` there is no solid.
+fn profile_projection<D: Dim>(x: &[Real], z: &[Real], line: &parry2d_f64::shape::Polyline, p: D::V) -> SurfacePoint<D::V> {
     use parry2d_f64::query::PointQuery;
-    let p = glam::DVec2::new(px, pz);
-    let d = (line.project_local_point(p, false).point - p).length();
+    let (px, pz) = (p.get(0), p.vertical());
+    let q = glam::DVec2::new(px, pz);
+    let proj = line.project_local_point(q, false).point - q;
+    let mut offset = D::V::ZERO;
+    offset.set(0, proj.x);
+    offset.set(D::DIM - 1, proj.y);
     let n = x.len();
-    if px < x[0] || px > x[n - 1] {
-        return d.max(Real::MIN_POSITIVE);
-    }
-    let i = x.partition_point(|&v| v <= px).clamp(1, n - 1);
-    let bed = z[i - 1] + (z[i] - z[i - 1]) * (px - x[i - 1]) / (x[i] - x[i - 1]);
-    if pz < bed {
-        -d
-    } else {
-        d
-    }
+    let inside = px >= x[0] && px <= x[n - 1] && {
+        let i = x.partition_point(|&v| v <= px).clamp(1, n - 1);
+        pz < z[i - 1] + (z[i] - z[i - 1]) * (px - x[i - 1]) / (x[i] - x[i - 1])
+    };
+    SurfacePoint { offset, inside }
 }
 
 /// The scene's obstacles as solids with a signed distance, in the scene's order.
@@ -110,6 +116,60 @@ pub fn wall_bodies<D: Dim>(scene: &Scene, walls: &[D::V]) -> Result<Vec<u16>> {
                 Some(i) if in_tank && i < NO_BODY as usize => i as u16,
                 _ => NO_BODY,
             }
+        })
+        .collect())
+}
+
+/// Modified DBC's ghost nodes (English et al. 2022, section 2.2): for each wall particle at
+/// `walls`, the offset `r_g - r_w = 2 (q - r_w)` to its mirror image through the nearest
+/// fluid-facing wall surface, `q` being the particle's projection on that surface (so the
+/// normal and the distance come from one projection); zero for a particle with no surface
+/// within the wall's thickness. The surfaces: the tank's inner box for a particle outside it
+/// (a corner particle projects on the corner and mirrors diagonally), each obstacle for a
+/// particle inside it (by [`Solid::project`], whatever the shape), and the paddle's face at
+/// rest, `x = paddle.x`, for the paddle's particles (`paddle`: `walls` are its particles at
+/// rest, whose only surface this is) and a flap's fixed part below the hinge. A surface is
+/// fluid-facing when the ghost lies in the tank, outside every obstacle and in front of the
+/// paddle; a particle none of whose surfaces is (under an obstacle standing on the floor, say)
+/// mirrors through the nearest.
+pub fn ghost_offsets<D: Dim>(scene: &Scene, walls: &[D::V], paddle: bool) -> Result<Vec<D::V>> {
+    let solids = solids::<D>(scene)?;
+    let thickness = scene.layers() as Real * scene.dp;
+    let (lo, hi) = (D::V::from_slice(&scene.tank.min), D::V::from_slice(&scene.tank.max));
+    let face = scene.paddle.as_ref().map(|p| p.x);
+    let in_tank = |p: D::V| (0..D::DIM).all(|k| p.get(k) >= lo.get(k) && p.get(k) <= hi.get(k));
+    let in_fluid =
+        |g: D::V| in_tank(g) && face.is_none_or(|x| g.get(0) >= x) && solids.iter().all(|s| s.signed_distance(g) >= 0.0);
+    Ok(walls
+        .iter()
+        .map(|&p| {
+            // offsets from p to its surface points, each within the wall's thickness
+            let mut surfaces: Vec<D::V> = Vec::with_capacity(2);
+            let behind_face = face.filter(|&x| paddle || (p.get(0) < x && p.get(0) >= x - thickness && in_tank(p)));
+            if let Some(x) = behind_face {
+                let mut q = D::V::ZERO;
+                q.set(0, x - p.get(0));
+                surfaces.push(q);
+            }
+            if !paddle {
+                if !in_tank(p) {
+                    surfaces.push(p.max(lo).min(hi) - p);
+                }
+                for s in &solids {
+                    let proj = s.project(p);
+                    if proj.inside && proj.signed_distance() >= -thickness {
+                        surfaces.push(proj.offset);
+                    }
+                }
+            }
+            let nearest = |facing: bool| {
+                surfaces
+                    .iter()
+                    .filter(|&&q| !facing || in_fluid(p + q * 2.0))
+                    .min_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+                    .copied()
+            };
+            nearest(true).or_else(|| nearest(false)).map_or(D::V::ZERO, |q| q * 2.0)
         })
         .collect())
 }

@@ -179,19 +179,55 @@ pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
     /// `s` scaled by `a`, plus `b` on the diagonal.
     fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym;
 
+    /// The nearest point of the surface of the axis-aligned box `[min, max]` to `p`, by parry's
+    /// point projection.
+    fn box_projection(min: Self::V, max: Self::V, p: Self::V) -> SurfacePoint<Self::V>;
     /// Signed distance from `p` to the surface of the axis-aligned box `[min, max]`
-    /// (negative inside), by parry's point projection.
-    fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real;
+    /// (negative inside).
+    fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real {
+        Self::box_projection(min, max, p).signed_distance()
+    }
     /// A closed, outward-oriented triangle mesh (3D only).
     type Mesh: Send + Sync;
     /// Builds a mesh from vertices (`DIM` values each) and triangles; the error says why not.
     fn mesh(vertices: &[Vec<Real>], triangles: &[[u32; 3]]) -> std::result::Result<Self::Mesh, String>;
-    /// Signed distance from `p` to the mesh surface, negative inside (parry's pseudo-normal test).
-    fn mesh_signed_distance(mesh: &Self::Mesh, p: Self::V) -> Real;
+    /// The nearest point of the mesh surface to `p` (parry's pseudo-normal test for inside).
+    fn mesh_projection(mesh: &Self::Mesh, p: Self::V) -> SurfacePoint<Self::V>;
+    /// Signed distance from `p` to the mesh surface, negative inside.
+    fn mesh_signed_distance(mesh: &Self::Mesh, p: Self::V) -> Real {
+        Self::mesh_projection(mesh, p).signed_distance()
+    }
 
-    /// Signed distance from `p` to the plane through `point` with unit `normal`
-    /// (positive on the normal's side), by parry's half-space projection.
-    fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real;
+    /// The nearest point to `p` of the plane through `point` with unit `normal` (the solid on
+    /// the side opposite the normal), by parry's half-space projection.
+    fn plane_projection(point: Self::V, normal: Self::V, p: Self::V) -> SurfacePoint<Self::V>;
+    /// Signed distance from `p` to that plane (positive on the normal's side).
+    fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real {
+        Self::plane_projection(point, normal, p).signed_distance()
+    }
+}
+
+/// The nearest point of a solid's surface to a query point `p`, as the offset from `p` to it,
+/// and whether `p` is inside the solid: the signed distance and, for a point inside, the
+/// direction out of the solid (modified DBC's wall normals, `boundary/mdbc.rs`) come from one
+/// projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint<V> {
+    /// Surface point minus query point.
+    pub offset: V,
+    pub inside: bool,
+}
+
+impl<V: Vector> SurfacePoint<V> {
+    /// Distance from the query point to the surface, negative inside.
+    pub fn signed_distance(&self) -> Real {
+        let d = self.offset.length();
+        if self.inside {
+            -d
+        } else {
+            d
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, Default)]
@@ -201,29 +237,17 @@ pub struct Dim3;
 
 macro_rules! shape_queries {
     ($parry:ident) => {
-        fn box_signed_distance(min: Self::V, max: Self::V, p: Self::V) -> Real {
+        fn box_projection(min: Self::V, max: Self::V, p: Self::V) -> SurfacePoint<Self::V> {
             use $parry::query::PointQuery;
             let half = (max - min) * 0.5;
             let centre = (max + min) * 0.5;
-            let cuboid = $parry::shape::Cuboid::new(half);
-            let proj = cuboid.project_local_point(p - centre, false);
-            let d = (proj.point - (p - centre)).length();
-            if proj.is_inside {
-                -d
-            } else {
-                d
-            }
+            let proj = $parry::shape::Cuboid::new(half).project_local_point(p - centre, false);
+            SurfacePoint { offset: proj.point - (p - centre), inside: proj.is_inside }
         }
-        fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real {
+        fn plane_projection(point: Self::V, normal: Self::V, p: Self::V) -> SurfacePoint<Self::V> {
             use $parry::query::PointQuery;
-            let plane = $parry::shape::HalfSpace::new(normal);
-            let proj = plane.project_local_point(p - point, false);
-            let d = (proj.point - (p - point)).length();
-            if proj.is_inside {
-                -d
-            } else {
-                d
-            }
+            let proj = $parry::shape::HalfSpace::new(normal).project_local_point(p - point, false);
+            SurfacePoint { offset: proj.point - (p - point), inside: proj.is_inside }
         }
     };
 }
@@ -239,8 +263,8 @@ impl Dim for Dim2 {
     fn mesh(_: &[Vec<Real>], _: &[[u32; 3]]) -> std::result::Result<(), String> {
         Err("a triangle mesh needs dim = 3".to_string())
     }
-    fn mesh_signed_distance(_: &(), _: DVec2) -> Real {
-        Real::INFINITY
+    fn mesh_projection(_: &(), _: DVec2) -> SurfacePoint<DVec2> {
+        SurfacePoint { offset: DVec2::splat(Real::INFINITY), inside: false }
     }
 
     #[inline(always)]
@@ -278,16 +302,11 @@ impl Dim for Dim3 {
         let flags = TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES;
         TriMesh::with_flags(v, triangles.to_vec(), flags).map_err(|e| format!("not a usable triangle mesh: {e:?}"))
     }
-    fn mesh_signed_distance(mesh: &Self::Mesh, p: DVec3) -> Real {
+    fn mesh_projection(mesh: &Self::Mesh, p: DVec3) -> SurfacePoint<DVec3> {
         use parry3d_f64::query::PointQuery;
         // the pseudo-normal projection gives the nearest surface point and a reliable inside flag
         let (proj, _) = mesh.project_local_point_and_get_feature(p);
-        let d = (proj.point - p).length();
-        if proj.is_inside {
-            -d
-        } else {
-            d
-        }
+        SurfacePoint { offset: proj.point - p, inside: proj.is_inside }
     }
 
     #[inline(always)]

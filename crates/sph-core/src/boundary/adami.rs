@@ -4,7 +4,7 @@
 
 use rayon::prelude::*;
 
-use super::{FluidForces, MovingWallAcc, WallModel};
+use super::{FluidForces, MovingWalls, WallModel};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FLUID};
@@ -31,10 +31,10 @@ impl<D: Dim, K: Kernel> WallModel<D, K> for Adami<D> {
         "adami"
     }
 
-    fn before_forces(&mut self, c: &Constants, kernel: &K, grid: &CellGrid<D>, p: &mut Particles<D>, moving_acc: MovingWallAcc<'_, D>) {
+    fn before_forces(&mut self, c: &Constants, kernel: &K, grid: &CellGrid<D>, p: &mut Particles<D>, moving: &MovingWalls<'_, D>) {
         let fs = p.fluid_start();
         if !self.moving_acc.is_empty() {
-            moving_acc(&p.id[p.n_fixed..fs], &mut self.moving_acc);
+            (moving.acc)(&p.id[p.n_fixed..fs], &mut self.moving_acc);
         }
         let (rho_walls, rho_fluid) = p.rho.split_at_mut(fs);
         wall_density_from_fluid(c, kernel, grid, &p.pos, &p.kind, rho_fluid, p.n_fixed, &self.moving_acc, rho_walls);

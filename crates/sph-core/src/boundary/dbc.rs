@@ -4,7 +4,7 @@
 
 use rayon::prelude::*;
 
-use super::{FluidForces, MovingWallAcc, WallModel};
+use super::{FluidForces, MovingWalls, WallModel};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FLUID};
@@ -19,7 +19,7 @@ impl<D: Dim, K: Kernel> WallModel<D, K> for Dbc {
         "dbc"
     }
 
-    fn before_forces(&mut self, _: &Constants, _: &K, _: &CellGrid<D>, _: &mut Particles<D>, _: MovingWallAcc<'_, D>) {}
+    fn before_forces(&mut self, _: &Constants, _: &K, _: &CellGrid<D>, _: &mut Particles<D>, _: &MovingWalls<'_, D>) {}
 
     fn forces(&self, c: &Constants, kernel: &K, grid: &CellGrid<D>, fields: Fields<'_, D>, drho_walls: &mut [Real], fluid: FluidForces<'_>) -> StepLimits {
         // The walls' continuity and the fluid's forces read the same fields and write apart:

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Viscosity};
+use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Slip, Viscosity};
 use crate::kernel::KernelKind;
 use crate::math::Real;
 
@@ -30,7 +30,7 @@ pub struct Defaults {
     pub viscosity: ViscosityDefaults,
     pub diffusion: DiffusionDefaults,
     pub integrator: IntegratorDefaults,
-    pub boundary: Boundary,
+    pub boundary: BoundaryDefaults,
     pub force_precision: ForcePrecision,
     pub shifting: ShiftingDefaults,
     pub damping: DampingDefaults,
@@ -74,6 +74,15 @@ pub struct IntegratorDefaults {
     pub euler_every: u32,
 }
 
+/// The default wall model and the parameters of each model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BoundaryDefaults {
+    /// A `model` tag of [`Boundary`]: DBC, the dynamic boundary condition (Crespo et al. 2007).
+    pub model: &'static str,
+    /// Modified DBC's wall velocity: the wall's own (DualSPHysics' default `SlipMode`).
+    pub slip: Slip,
+}
+
 /// Particle shifting's parameters (shifting is off by default).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ShiftingDefaults {
@@ -101,7 +110,7 @@ impl Default for Defaults {
             viscosity: ViscosityDefaults { model: "artificial", alpha: 0.01, nu: 1.0e-6, cs: 0.12, ci: 0.0066 },
             diffusion: DiffusionDefaults { model: "fourtakas", delta: 0.1 },
             integrator: IntegratorDefaults { scheme: "symplectic", euler_every: 40 },
-            boundary: Boundary::Dbc,
+            boundary: BoundaryDefaults { model: "dbc", slip: Slip::WallVelocity },
             force_precision: ForcePrecision::F64,
             shifting: ShiftingDefaults { coefficient: 2.0 },
             damping: DampingDefaults { strength: 10.0 },
@@ -147,7 +156,7 @@ pub(crate) mod serde_default {
         ci: Real = viscosity.ci;
         delta: Real = diffusion.delta;
         euler_every: u32 = integrator.euler_every;
-        boundary: Boundary = boundary;
+        mdbc_slip: Slip = boundary.slip;
         force_precision: ForcePrecision = force_precision;
         shifting_coefficient: Real = shifting.coefficient;
         damping_strength: Real = damping.strength;
@@ -173,6 +182,10 @@ pub(crate) mod serde_default {
     pub(crate) fn integrator() -> Integrator {
         tagged("scheme", Defaults::default().integrator.scheme)
     }
+
+    pub(crate) fn boundary() -> Boundary {
+        tagged("model", Defaults::default().boundary.model)
+    }
 }
 
 #[cfg(test)]
@@ -185,6 +198,9 @@ mod tests {
         assert_eq!(viscosity(), Viscosity::Artificial { alpha: 0.01 });
         assert_eq!(diffusion(), Diffusion::Fourtakas { delta: 0.1 });
         assert_eq!(integrator(), Integrator::Symplectic);
+        assert_eq!(boundary(), Boundary::Dbc);
+        let mdbc: Boundary = serde_json::from_str(r#"{"model": "mdbc"}"#).expect("mdbc");
+        assert_eq!(mdbc, Boundary::Mdbc { slip: Slip::WallVelocity });
     }
 
     #[test]

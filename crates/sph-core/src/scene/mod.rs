@@ -12,9 +12,9 @@ mod validate;
 use serde::{Deserialize, Serialize};
 
 use self::defaults::serde_default as default;
-pub use self::defaults::{DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, ViscosityDefaults};
+pub use self::defaults::{BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, ViscosityDefaults};
 pub use self::geometry::{BoxSpec, Damping, Obstacle};
-pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, Viscosity};
+pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, Slip, Viscosity};
 use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
@@ -205,7 +205,7 @@ mod tests {
         assert_eq!(s.integrator, Integrator::Verlet { euler_every: d.integrator.euler_every });
         assert_eq!(s.shifting.map(|sh| sh.coefficient), Some(d.shifting.coefficient));
         let plain = Scene::from_json(&dambreak_json("")).expect("valid scene");
-        assert_eq!((plain.gravity, plain.coefh, plain.boundary), (d.gravity, d.coefh, d.boundary));
+        assert_eq!((plain.gravity, plain.coefh, plain.boundary), (d.gravity, d.coefh, super::defaults::serde_default::boundary()));
         assert_eq!((plain.density_band, plain.energy_growth_limit), (d.density_band, d.energy_growth_limit));
     }
 

@@ -75,6 +75,34 @@ pub enum Boundary {
     /// 0 (no suction), and the density of that pressure; no memory. `a_w` is the wall's own
     /// acceleration (the paddle's, from its motion law).
     Adami,
+    /// Modified dynamic boundary condition (English et al. 2022, Comp. Part. Mech. 9, 1-15;
+    /// `boundary/mdbc.rs`): each wall particle has a ghost node, its mirror image through the
+    /// wall surface along the surface normal (from the solids' geometry); the density at the
+    /// ghost and its gradient are interpolated from the fluid with the first-order (kernel
+    /// gradient) corrected SPH interpolation, the Shepard average where that system is
+    /// ill-conditioned, and the wall particle takes `rho_w = rho_g + (r_w - r_g) . grad rho_g`,
+    /// at least rho0 (no suction, as DualSPHysics' walls), at every force evaluation; no memory.
+    Mdbc {
+        /// The velocity the wall shows the fluid (in the viscous and continuity terms).
+        #[serde(default = "default::mdbc_slip")]
+        slip: Slip,
+    },
+}
+
+/// The velocity a modified-DBC wall particle shows the fluid (DualSPHysics' `SlipMode`), from
+/// the wall's own velocity `v_m` and the Shepard average `v_g` of the fluid's at its ghost node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Slip {
+    /// The wall's own velocity, `v_w = v_m` (zero for fixed walls; DualSPHysics' "DBC vel=0",
+    /// English et al.'s scheme): the artificial viscosity then acts as for DBC walls.
+    WallVelocity,
+    /// `v_w = 2 v_m - v_g`: the velocity interpolated to the wall surface, halfway between
+    /// particle and ghost, is the wall's (English et al. 2022, section 2.3).
+    NoSlip,
+    /// The fluid's tangential velocity and the mirror of its normal velocity about the wall's,
+    /// `v_w = v_g + 2 ((v_m - v_g) . n) n`: no shear at the wall, no flow through it.
+    FreeSlip,
 }
 
 /// Floating-point type of the fluid force loop's pair arithmetic. The state (positions,

@@ -132,6 +132,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
         solver.grid.forget_slot_cells(GROUP_FIXED);
+        solver.walls.prepare(&solver.scene, &solver.p, &solver.moving_ref)?;
         if solver.scene.gauges.iter().any(|g| matches!(g, GaugeSpec::Force { .. })) {
             solver.wall_body = geometry::wall_bodies::<D>(&solver.scene, &solver.p.pos[..n_fixed])?;
         }

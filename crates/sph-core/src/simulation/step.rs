@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::advance::Rule;
 use super::{fields_of, History, Solver};
+use crate::boundary::{on_paddle, MovingWalls};
 use crate::error::{InstabilityKind, Result};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
@@ -18,28 +19,27 @@ use crate::physics::VISC_LAMINAR_SPS;
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
     /// Places the paddle particles where the motion law puts them at time `t`, with its velocity.
     pub(super) fn move_boundaries(&mut self, t: Real) {
-        let Some(paddle) = &self.scene.paddle else { return };
-        let (hinge, swl) = self.paddle_levels;
-        let pose: PaddlePose = match self.absorber {
-            Some(state) => paddle.pose_displaced(t, hinge, swl, state.offset_at(t), state.rate),
-            None => paddle.pose(t, hinge, swl),
-        };
+        let Some(pose) = self.paddle_pose(t) else { return };
         self.paddle_time = t;
         let range = self.p.n_fixed..self.p.fluid_start();
-        let up = D::DIM - 1;
         let (n_fixed, reference) = (self.p.n_fixed as u32, &self.moving_ref);
         let ids = &self.p.id[range.clone()];
         let (pos, vel) = (&mut self.p.pos[range.clone()], &mut self.p.vel[range]);
         pos.par_iter_mut().zip(vel.par_iter_mut()).zip(ids.par_iter()).for_each(|((x, v), &id)| {
-            let r = reference[(id - n_fixed) as usize];
-            let (xz, uw) = pose.apply(r.get(0), r.get(up));
-            *x = r;
-            x.set(0, xz[0]);
-            x.set(up, xz[1]);
-            *v = in_flume_plane::<D>(uw);
+            (*x, *v) = on_paddle::<D>(Some(pose), reference[(id - n_fixed) as usize]);
         });
     }
 
+    /// The paddle's pose at time `t` (with active absorption's correction); None without a
+    /// paddle.
+    fn paddle_pose(&self, t: Real) -> Option<PaddlePose> {
+        let paddle = self.scene.paddle.as_ref()?;
+        let (hinge, swl) = self.paddle_levels;
+        Some(match self.absorber {
+            Some(state) => paddle.pose_displaced(t, hinge, swl, state.offset_at(t), state.rate),
+            None => paddle.pose(t, hinge, swl),
+        })
+    }
 
     /// Records every gauge whose next sample time has come.
     pub(super) fn sample_gauges(&mut self) {
@@ -62,7 +62,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 paddle_accelerations::<D>(paddle, hinge, swl, paddle_time, ids, n_fixed, reference, out);
             }
         };
-        self.walls.before_forces(&c, &self.kernel, &self.grid, &mut self.p, &moving_acc);
+        let moving = MovingWalls::<D> { acc: &moving_acc, pose: self.paddle_pose(paddle_time) };
+        self.walls.before_forces(&c, &self.kernel, &self.grid, &mut self.p, &moving);
         if VISC == VISC_LAMINAR_SPS {
             let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
