@@ -51,3 +51,17 @@ def test_mdbc_walls_hold_still_water_hydrostatic(slip: str | None) -> None:
         ratio.append(pressure[i] / (rho_g * (DEPTH - pos[i, 1])))
     print(f"{slip}: p / rho g (d - z) = {np.round(ratio, 4)}")
     assert np.all(np.abs(np.array(ratio) - 1.0) < 0.02), ratio
+
+
+def test_buchner_metrics_integrate_and_high_pass() -> None:
+    """The Buchner cases' impulse is the trapezoidal integral with interpolated ends, and the
+    high-pass RMS is zero for a line and the amplitude over sqrt(2) for a fast sine."""
+    from watersim.validation import buchner as bu
+
+    t = np.linspace(0.0, 10.0, 2001)
+    assert bu.pressure_impulse(t, 2.0 * t, 1.0, 3.0) == pytest.approx(8.0, rel=1e-12)
+    assert bu.high_pass_rms(t, 0.3 + 0.1 * t, 1.0, 0.25) == pytest.approx(0.0, abs=1e-12)
+    fast = 0.5 * np.sin(2.0 * np.pi * t / 0.05)  # 0.25 holds five whole periods
+    assert bu.high_pass_rms(t, fast, 1.0, 0.25) == pytest.approx(0.5 / np.sqrt(2.0), rel=0.02)
+    tr, pr = bu.buchner_reference("pysph")
+    assert np.all(np.diff(tr) >= 0.0) and 0.68 < pr[(tr > 2.0) & (tr < 3.5)].max() < 0.70
