@@ -2,7 +2,8 @@
 
 Public names:
 
-- :class:`Simulation`: a running simulation (wrapper of the core's).
+- :class:`Simulation`: a running simulation (wrapper of the core's); :class:`Snapshot`, a
+  consistent copy of its state that another thread may take while it steps.
 - :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
 - :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`MeshBeach` (3D,
   from an STL file), :class:`DampingZone`): the wave
@@ -34,7 +35,7 @@ from .measure import front_error, front_position, load_martin_moyce, water_colum
 from .rundir import load
 from .scenefile import load as load_scene
 from .scenes import DamBreak, SceneBuilder, StiffFluidWarning, Tank
-from .simulation import Simulation
+from .simulation import Simulation, Snapshot
 
 __all__ = [
     *_flume.__all__,
@@ -44,6 +45,7 @@ __all__ = [
     "StiffFluidWarning",
     "SceneError",
     "Simulation",
+    "Snapshot",
     "Tank",
     "__version__",
     "analysis",

@@ -36,8 +36,13 @@ def scene_defaults() -> dict[str, Any]:
     ``crates/sph-core/src/scene/defaults.rs``.)"""
 
 class Simulation:
-    """A WCSPH simulation built from a scene in its JSON form."""
+    """A WCSPH simulation built from a scene in its JSON form.
 
+    ``step`` and ``run`` release the GIL. While one thread steps, every other call from another
+    thread raises ``RuntimeError`` at once, except ``snapshot()``; NumPy views taken before
+    (``positions``, ``velocities``, ``densities``, ``kinds``, ``ids``) alias the arrays the step
+    writes, so reading them then gives a torn mixture of two states: use ``snapshot()``.
+    """
     def __init__(self, scene_json: str) -> None: ...
     @property
     def dim(self) -> int: ...
@@ -57,24 +62,30 @@ class Simulation:
         """Last time step [s]."""
     def step(self, n: int = 1, threads: int | None = None) -> None: ...
     def run(self, until: float) -> None: ...
+    def snapshot(self) -> dict[str, Any]:
+        """Copies of the state at one instant: ``time``, ``steps``, ``dt``, ``n_excluded`` and
+        arrays ``positions``, ``velocities`` (N, dim), ``densities``, ``kinds``, ``ids`` (N,) in
+        storage order. Callable from any thread: while another thread steps, the stepping
+        thread copies the state between two steps (the caller waits with the GIL released)."""
     @property
     def positions(self) -> npt.NDArray[np.float64]:
-        """(N, dim) [m], read-only view in storage order, valid until the next step/run."""
+        """(N, dim) [m], read-only view in storage order, valid until the next step/run; it
+        aliases the solver's array, which a step on another thread writes while it is read."""
     @property
     def velocities(self) -> npt.NDArray[np.float64]:
-        """(N, dim) [m/s], read-only view in storage order."""
+        """(N, dim) [m/s], read-only view in storage order (aliases as ``positions``)."""
     @property
     def densities(self) -> npt.NDArray[np.float64]:
-        """(N,) [kg/m^3], read-only view in storage order."""
+        """(N,) [kg/m^3], read-only view in storage order (aliases as ``positions``)."""
     @property
     def pressures(self) -> npt.NDArray[np.float64]:
-        """(N,) [Pa], read-only view in storage order."""
+        """(N,) [Pa] in storage order, computed from the densities on each access (a copy)."""
     @property
     def kinds(self) -> npt.NDArray[np.uint8]:
-        """(N,) 0 fluid, 1 fixed boundary, 2 moving boundary."""
+        """(N,) 0 fluid, 1 fixed boundary, 2 moving boundary (a view, aliases as ``positions``)."""
     @property
     def ids(self) -> npt.NDArray[np.uint32]:
-        """(N,) original particle id of each storage slot."""
+        """(N,) original particle id of each storage slot (a view, aliases as ``positions``)."""
     def memory_bytes(self) -> int: ...
     def fluid_pairs(self) -> int: ...
     def force_evaluations_per_step(self) -> int: ...

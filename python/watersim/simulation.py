@@ -3,7 +3,9 @@
 The core keeps particles in its own (cell-sorted) storage order, which changes every step, and
 hands out read-only NumPy views of its arrays that are valid only until the next ``step``/``run``.
 This wrapper adds what a user needs on top: copies of the fluid state, a state hash in particle-id
-order (independent of the storage order), and a ``run`` that calls back at regular sample times.
+order (independent of the storage order), a ``run`` that calls back at regular sample times, and
+:meth:`Simulation.snapshot`, a consistent copy of the state that another thread may take while one
+steps.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import json
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -20,7 +23,7 @@ import numpy.typing as npt
 
 from . import _core
 
-__all__ = ["Simulation"]
+__all__ = ["Simulation", "Snapshot"]
 
 FLUID: int = 0
 """Particle kind code of fluid particles."""
@@ -45,7 +48,11 @@ class Simulation:
 
     Array properties (``positions``, ``velocities``, ``densities``, ``pressures``, ``kinds``,
     ``ids``) are read-only views in the solver's storage order, valid until the next
-    :meth:`step` or :meth:`run`: copy what you keep.
+    :meth:`step` or :meth:`run`: copy what you keep. They alias the solver's own arrays, which
+    a step writes with the GIL released: a view read on one thread while another thread steps
+    the simulation sees a torn mixture of two states. From another thread, read
+    :meth:`snapshot` instead (the properties themselves raise ``RuntimeError`` while a step
+    runs on another thread).
     """
 
     def __init__(self, scene: Mapping[str, Any] | str) -> None:
@@ -127,6 +134,17 @@ class Simulation:
     def ids(self) -> npt.NDArray[np.uint32]:
         """(N,) original particle id of each storage slot."""
         return self._sim.ids
+
+    def snapshot(self) -> Snapshot:
+        """Copies of the state at one instant, safe to take from any thread.
+
+        While another thread is in :meth:`step` or :meth:`run`, the stepping thread makes the
+        copies between two steps (the caller waits at most about one step, with the GIL
+        released); otherwise they are made at once. Every array of one snapshot belongs to the
+        same step as its ``time`` and ``steps``.
+        """
+        s = self._sim.snapshot()
+        return Snapshot(**s)
 
     def step(self, n: int = 1, threads: int | None = None) -> None:
         """Advance ``n`` time steps.
@@ -347,6 +365,27 @@ class Simulation:
         while self._sim.time < target:
             self._sim.run(min(target, self._sim.time + bar.chunk))
             bar.update()
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """A consistent copy of a simulation's state between two steps (:meth:`Simulation.snapshot`),
+    arrays in the solver's storage order of that step (``ids`` maps them to particles)."""
+
+    time: float
+    """Simulated time [s]."""
+    steps: int
+    dt: float
+    """Last time step [s]."""
+    n_excluded: int
+    positions: npt.NDArray[np.float64]
+    """(N, dim) [m]."""
+    velocities: npt.NDArray[np.float64]
+    """(N, dim) [m/s]."""
+    densities: npt.NDArray[np.float64]
+    """(N,) [kg/m^3]."""
+    kinds: npt.NDArray[np.uint8]
+    ids: npt.NDArray[np.uint32]
 
 
 STOP_RESOLUTION = 1e-9

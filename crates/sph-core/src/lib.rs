@@ -28,7 +28,7 @@ pub use math::{Dim, Dim2, Dim3, Real};
 pub use motion::{MotionLaw, Paddle, PaddleKind};
 pub use probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
 pub use scene::{Damping, Diffusion, Integrator, Obstacle, Scene, Viscosity};
-pub use simulation::{Checkpoint, Interpolated, Params, Simulation, Solver};
+pub use simulation::{Checkpoint, Interpolated, Params, Simulation, Snapshot, SnapshotExchange, Solver};
 pub use threads::on_threads;
 
 use physics::{diff_code, visc_code, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR, VISC_LAMINAR_SPS};

@@ -168,6 +168,12 @@ impl<D: Dim> CellGrid<D> {
         self.cells[g] = Vec::new();
     }
 
+    /// One past the highest slot any group's cells hold (the cell starts are non-decreasing,
+    /// so each group's last start is its end).
+    pub fn slot_end(&self) -> usize {
+        self.starts.iter().filter_map(|s| s.last()).map(|&e| e as usize).max().unwrap_or(0)
+    }
+
     /// Whether group `g` has cell starts (see [`CellGrid::release_group`]).
     #[inline(always)]
     pub fn has_group(&self, g: usize) -> bool {

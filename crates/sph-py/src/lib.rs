@@ -6,13 +6,14 @@
 use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 use std::time::Duration;
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use sph_core::{Error, Simulation as CoreSimulation};
+use sph_core::{Error, Simulation as CoreSimulation, SnapshotExchange};
 
 create_exception!(_core, SceneError, PyValueError, "A scene field is invalid; the message names the field.");
 create_exception!(
@@ -48,15 +49,38 @@ fn to_py_err(py: Python<'_>, e: Error) -> PyErr {
 }
 
 /// A WCSPH simulation built from a JSON scene (see `watersim.scenes`).
-#[pyclass(module = "watersim._core")]
+///
+/// Frozen, its core behind a mutex: a call that steps holds the core for its whole length with
+/// the GIL released, and a call from another Python thread meanwhile is refused at once
+/// (`try_lock`, never a wait that could hold the GIL the stepping thread needs for its signal
+/// checks), except `snapshot()`, which the stepping thread answers between two steps.
+#[pyclass(module = "watersim._core", frozen)]
 struct Simulation {
-    inner: Box<dyn CoreSimulation>,
+    inner: Mutex<Box<dyn CoreSimulation>>,
+    snapshots: Arc<SnapshotExchange>,
+}
+
+type Core<'a> = MutexGuard<'a, Box<dyn CoreSimulation>>;
+
+impl Simulation {
+    /// The core, unless another thread is stepping it.
+    fn core(&self) -> PyResult<Core<'_>> {
+        match self.inner.try_lock() {
+            Ok(core) => Ok(core),
+            // a panic in an earlier call left the state as a failed step leaves it: readable
+            Err(TryLockError::Poisoned(e)) => Ok(e.into_inner()),
+            Err(TryLockError::WouldBlock) => Err(PyRuntimeError::new_err(
+                "the simulation is stepping on another thread; snapshot() gives a consistent copy of its state meanwhile",
+            )),
+        }
+    }
 }
 
 /// Read-only NumPy view of memory owned by the `Simulation` object `owner`.
 ///
 /// Sound because the core allocates its particle arrays once and never reallocates them, and the
-/// view keeps `owner` alive. The contents change with every step (documented in the stub).
+/// view keeps `owner` alive. The contents change with every step, and a step on another thread
+/// writes them while the view is read (documented in the stub: `snapshot()` copies instead).
 fn view_2d<'py>(owner: &Bound<'py, Simulation>, data: &[f64], dim: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let view = ArrayView2::from_shape((data.len() / dim, dim), data)
         .map_err(|e| PyRuntimeError::new_err(format!("bad array shape: {e}")))?;
@@ -121,106 +145,142 @@ impl Simulation {
     #[new]
     fn new(py: Python<'_>, scene_json: &str) -> PyResult<Self> {
         let inner = py.detach(|| sph_core::build_from_json(scene_json)).map_err(|e| to_py_err(py, e))?;
-        Ok(Self { inner })
+        let snapshots = inner.snapshot_exchange();
+        Ok(Self { inner: Mutex::new(inner), snapshots })
     }
 
     #[getter]
-    fn dim(&self) -> usize {
-        self.inner.dim()
+    fn dim(&self) -> PyResult<usize> {
+        Ok(self.core()?.dim())
     }
     #[getter]
-    fn n_particles(&self) -> usize {
-        self.inner.n_particles()
+    fn n_particles(&self) -> PyResult<usize> {
+        Ok(self.core()?.n_particles())
     }
     #[getter]
-    fn n_fluid(&self) -> usize {
-        self.inner.n_fluid()
+    fn n_fluid(&self) -> PyResult<usize> {
+        Ok(self.core()?.n_fluid())
     }
     #[getter]
-    fn n_boundary(&self) -> usize {
-        self.inner.n_particles() - self.inner.n_fluid()
+    fn n_boundary(&self) -> PyResult<usize> {
+        let core = self.core()?;
+        Ok(core.n_particles() - core.n_fluid())
     }
     /// Simulated time [s].
     #[getter]
-    fn time(&self) -> f64 {
-        self.inner.time()
+    fn time(&self) -> PyResult<f64> {
+        Ok(self.core()?.time())
     }
     #[getter]
-    fn steps(&self) -> u64 {
-        self.inner.steps()
+    fn steps(&self) -> PyResult<u64> {
+        Ok(self.core()?.steps())
     }
     /// Last time step [s].
     #[getter]
-    fn dt(&self) -> f64 {
-        self.inner.dt()
+    fn dt(&self) -> PyResult<f64> {
+        Ok(self.core()?.dt())
     }
 
     /// Advances `n` steps (the GIL is released): on rayon's global pool, or with `threads` on
     /// a pool of that many threads (built once, then reused).
     #[pyo3(signature = (n = 1, threads = None))]
-    fn step(&mut self, py: Python<'_>, n: u64, threads: Option<usize>) -> PyResult<()> {
+    fn step(&self, py: Python<'_>, n: u64, threads: Option<usize>) -> PyResult<()> {
+        let mut core = self.core()?;
         match threads {
-            None => interruptible(py, &mut self.inner, |inner| inner.step(n)),
-            Some(t) => interruptible(py, &mut self.inner, |inner| sph_core::on_threads(t, || inner.step(n)).and_then(|r| r)),
+            None => interruptible(py, &mut core, |inner| inner.step(n)),
+            Some(t) => interruptible(py, &mut core, |inner| sph_core::on_threads(t, || inner.step(n)).and_then(|r| r)),
         }
     }
 
     /// Advances until `time >= until` [s] (the GIL is released).
-    fn run(&mut self, py: Python<'_>, until: f64) -> PyResult<()> {
-        interruptible(py, &mut self.inner, |inner| inner.run_until(until))
+    fn run(&self, py: Python<'_>, until: f64) -> PyResult<()> {
+        let mut core = self.core()?;
+        interruptible(py, &mut core, |inner| inner.run_until(until))
+    }
+
+    /// Copies of the state at one instant: a dict of `time`, `steps`, `dt`, `n_excluded` and
+    /// NumPy arrays `positions`, `velocities` (N, dim), `densities`, `kinds`, `ids` (N,), in
+    /// storage order. Callable from any thread: while another thread steps this simulation,
+    /// the stepping thread makes the copies between two steps (the GIL is released meanwhile).
+    fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let snapshot = loop {
+            match self.inner.try_lock() {
+                Ok(core) => break core.snapshot(),
+                Err(TryLockError::Poisoned(e)) => break e.into_inner().snapshot(),
+                Err(TryLockError::WouldBlock) => {
+                    let exchange = &self.snapshots;
+                    if let Some(s) = py.detach(|| exchange.request(SIGNAL_POLL)) {
+                        break s;
+                    }
+                    // not answered: the other thread is between two calls or in a long step
+                    py.check_signals()?;
+                }
+            }
+        };
+        let n = snapshot.densities.len();
+        let dim = snapshot.positions.len().checked_div(n).unwrap_or(1);
+        let d = PyDict::new(py);
+        d.set_item("time", snapshot.time)?;
+        d.set_item("steps", snapshot.steps)?;
+        d.set_item("dt", snapshot.dt)?;
+        d.set_item("n_excluded", snapshot.n_excluded)?;
+        d.set_item("positions", PyArray1::from_vec(py, snapshot.positions).reshape([n, dim])?)?;
+        d.set_item("velocities", PyArray1::from_vec(py, snapshot.velocities).reshape([n, dim])?)?;
+        d.set_item("densities", PyArray1::from_vec(py, snapshot.densities))?;
+        d.set_item("kinds", PyArray1::from_vec(py, snapshot.kinds))?;
+        d.set_item("ids", PyArray1::from_vec(py, snapshot.ids))?;
+        Ok(d)
     }
 
     #[getter]
     fn positions<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let this = slf.borrow();
-        view_2d(slf, this.inner.positions(), this.inner.dim())
+        let core = slf.get().core()?;
+        view_2d(slf, core.positions(), core.dim())
     }
     #[getter]
     fn velocities<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let this = slf.borrow();
-        view_2d(slf, this.inner.velocities(), this.inner.dim())
+        let core = slf.get().core()?;
+        view_2d(slf, core.velocities(), core.dim())
     }
     #[getter]
     fn densities<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let this = slf.borrow();
-        view_1d(slf, this.inner.densities())
+        view_1d(slf, slf.get().core()?.densities())
     }
     #[getter]
     fn pressures<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         // computed from the densities on each access (the core does not store pressure)
-        let this = slf.borrow();
-        Ok(PyArray1::from_vec(slf.py(), this.inner.pressures()))
+        Ok(PyArray1::from_vec(slf.py(), slf.get().core()?.pressures()))
     }
     #[getter]
     fn kinds<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<u8>>> {
-        let this = slf.borrow();
-        view_1d(slf, this.inner.kinds())
+        view_1d(slf, slf.get().core()?.kinds())
     }
     #[getter]
     fn ids<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<u32>>> {
-        let this = slf.borrow();
-        view_1d(slf, this.inner.ids())
+        view_1d(slf, slf.get().core()?.ids())
     }
 
     /// Bytes of the solver's own arrays.
-    fn memory_bytes(&self) -> usize {
-        self.inner.memory_bytes()
+    fn memory_bytes(&self) -> PyResult<usize> {
+        Ok(self.core()?.memory_bytes())
     }
 
     /// Fluid pairs within the support at the present positions (one force evaluation's work).
-    fn fluid_pairs(&self, py: Python<'_>) -> u64 {
-        let inner = &self.inner;
-        py.detach(|| inner.fluid_pairs())
+    fn fluid_pairs(&self, py: Python<'_>) -> PyResult<u64> {
+        let core = self.core()?;
+        let inner = &**core;
+        Ok(py.detach(|| inner.fluid_pairs()))
     }
 
     /// Fluid force evaluations per step (2 Symplectic, 1 Verlet).
-    fn force_evaluations_per_step(&self) -> u32 {
-        self.inner.force_evaluations_per_step()
+    fn force_evaluations_per_step(&self) -> PyResult<u32> {
+        Ok(self.core()?.force_evaluations_per_step())
     }
 
     /// Derived parameters (h, c0, mass, ...) as a dict.
     fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(py, &self.inner.params())
+        let params = self.core()?.params();
+        to_python(py, &params)
     }
 
     /// Shepard-normalised interpolation of fluid fields at `points` (M, dim):
@@ -230,13 +290,14 @@ impl Simulation {
         py: Python<'py>,
         points: numpy::PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let dim = self.inner.dim();
+        let core = self.core()?;
+        let dim = core.dim();
         let arr = points.as_array();
         if arr.ncols() != dim {
             return Err(SceneError::new_err(format!("points: must have shape (M, {dim}), got {:?}", arr.shape())));
         }
         let flat: Vec<f64> = arr.iter().copied().collect();
-        let inner = &self.inner;
+        let inner = &**core;
         let out = py.detach(|| inner.interpolate(&flat)).map_err(|e| to_py_err(py, e))?;
         let m = out.kernel_sum.len();
         let d = PyDict::new(py);
@@ -254,9 +315,10 @@ impl Simulation {
     /// a last axis (`velocity` (n, points, dim)). Windows also give `shape`, the grid counts per
     /// axis, x fastest.
     fn gauges<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let dim = self.inner.dim();
+        let core = self.core()?;
+        let dim = core.dim();
         let mut out = Vec::new();
-        for g in self.inner.gauges() {
+        for g in core.gauges() {
             let d = PyDict::new(py);
             d.set_item("name", &g.name)?;
             d.set_item("type", g.kind)?;
@@ -293,14 +355,14 @@ impl Simulation {
 
     /// Fluid particles excluded after leaving the domain.
     #[getter]
-    fn n_excluded(&self) -> usize {
-        self.inner.n_excluded()
+    fn n_excluded(&self) -> PyResult<usize> {
+        Ok(self.core()?.n_excluded())
     }
 
     /// The full state needed to continue this run exactly, as a dict of NumPy arrays and
     /// scalars (see `watersim.Simulation.save_checkpoint`).
     fn checkpoint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let c = self.inner.checkpoint();
+        let c = self.core()?.checkpoint();
         let d = PyDict::new(py);
         d.set_item("time", c.time)?;
         d.set_item("steps", c.steps)?;
@@ -332,12 +394,13 @@ impl Simulation {
     }
 
     /// Continues from `checkpoint()` of a run of the same scene.
-    fn restore(&mut self, py: Python<'_>, checkpoint: &Bound<'_, PyDict>) -> PyResult<()> {
+    fn restore(&self, py: Python<'_>, checkpoint: &Bound<'_, PyDict>) -> PyResult<()> {
         fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
             let v = d.get_item(key)?.ok_or_else(|| SceneError::new_err(format!("checkpoint.{key}: missing")))?;
             v.extract::<T>().map_err(Into::into).map_err(|e: PyErr| SceneError::new_err(format!("checkpoint.{key}: {e}")))
         }
-        let mut c = self.inner.checkpoint();
+        let mut core = self.core()?;
+        let mut c = core.checkpoint();
         c.time = item(checkpoint, "time")?;
         c.steps = item(checkpoint, "steps")?;
         c.dt = item(checkpoint, "dt")?;
@@ -372,22 +435,23 @@ impl Simulation {
             Some(v) if !v.is_none() => Some(item(checkpoint, "paddle_correction")?),
             _ => None,
         };
-        self.inner.restore(&c).map_err(|e| to_py_err(py, e))
+        core.restore(&c).map_err(|e| to_py_err(py, e))
     }
 
-    fn __repr__(&self) -> String {
-        let p = self.inner.params();
-        format!(
+    fn __repr__(&self) -> PyResult<String> {
+        let core = self.core()?;
+        let p = core.params();
+        Ok(format!(
             "Simulation(dim={}, n_particles={}, n_fluid={}, kernel={}, viscosity={}, diffusion={}, t={:.4} s, steps={})",
             p.dim,
-            self.inner.n_particles(),
-            self.inner.n_fluid(),
+            core.n_particles(),
+            core.n_fluid(),
             p.kernel,
             p.viscosity,
             p.diffusion,
-            self.inner.time(),
-            self.inner.steps()
-        )
+            core.time(),
+            core.steps()
+        ))
     }
 }
 

@@ -145,8 +145,9 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     debug_assert!(s.idx[..n_pad].iter().all(|&b| (b as usize) < f.vel.len().min(f.rho.len())));
     for k in 0..n_pad {
         let b = s.idx[k] as usize;
-        // SAFETY: every index comes from the candidate scan over the position array (or is
-        // the particle itself), and the field arrays are as long as it (`Fields`).
+        // SAFETY: every index comes from the candidate scan over the grid's slots (or is the
+        // particle itself), and `fluid_forces_variant` asserted once per call that the grid's
+        // slots lie within the position array and that the field arrays are as long as it.
         let (v, rhob) = unsafe { (*f.vel.get_unchecked(b), *f.rho.get_unchecked(b)) };
         for d in 0..D::DIM {
             s.vb[d][k] = F::of(v.get(d));
@@ -477,8 +478,13 @@ const CHUNK: usize = 128;
 
 /// Batched [`super::forces::fluid_forces_scalar`] for the artificial and laminar viscosity
 /// models (the SPS closure stays on the scalar loop). Same contract: writes `acc` and `drho` of
-/// the fluid range and returns the step limits.
-pub fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+/// the fluid range and returns the step limits. Reached from outside the crate through
+/// [`super::forces::fluid_forces`] only.
+///
+/// # Panics
+/// If the grid's slots or the fluid range do not lie within `f.pos`, or a field array is
+/// shorter than `f.pos` (checked once per call: the gather reads without bounds checks).
+pub(crate) fn fluid_forces_batched<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -502,6 +508,25 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
 ) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
     assert!(!avx2 || uses_avx2(), "the AVX2 variant needs a CPU with AVX2");
+    // What the unchecked gather and the AVX2 scan's loads rely on, checked here once per call
+    // instead of once per pair: every slot the grid hands out indexes the position array, the
+    // fields are as long as it, and the fluid range lies within it.
+    let n = f.pos.len();
+    assert!(
+        grid.slot_end() <= n && f.vel.len() >= n && f.rho.len() >= n && f.kind.len() >= n,
+        "fluid forces: the grid's {} slots and the fields ({} velocities, {} densities, {} kinds) must cover the {n} positions",
+        grid.slot_end(),
+        f.vel.len(),
+        f.rho.len(),
+        f.kind.len()
+    );
+    assert!(
+        acc.len() == drho.len() && f.fluid_start + acc.len() <= n,
+        "fluid forces: {} accelerations and {} density rates from slot {} must lie within the {n} positions",
+        acc.len(),
+        drho.len(),
+        f.fluid_start
+    );
     match (c.pair_f32, seventh_power(c)) {
         (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
         (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),

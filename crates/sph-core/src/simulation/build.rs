@@ -117,6 +117,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             n_excluded: 0,
             energy0: (0.0, 0.0),
             stop: Default::default(),
+            snapshots: Default::default(),
         };
         solver.energy0 = solver.diagnostics().energy_baseline(solver.scene.tank.min[D::DIM - 1]);
         if let Some(paddle) = &solver.scene.paddle {

@@ -15,9 +15,11 @@ use rayon::prelude::*;
 mod advance;
 mod build;
 mod checkpoint;
+mod snapshot;
 mod step;
 
 pub use checkpoint::Checkpoint;
+pub use snapshot::{Snapshot, SnapshotExchange};
 
 use crate::boundary::WallModel;
 use crate::diagnostics::Diagnostics;
@@ -119,6 +121,23 @@ pub trait Simulation: Send + Sync {
     /// [`Simulation::run_until`] return [`Error::Interrupted`] before their next step (the
     /// binding sets it from another thread on Ctrl-C and clears it before each call).
     fn stop_flag(&self) -> Arc<AtomicBool>;
+    /// Where another thread asks for a [`Snapshot`] while [`Simulation::step`] or
+    /// [`Simulation::run_until`] runs: answered between two steps.
+    fn snapshot_exchange(&self) -> Arc<SnapshotExchange>;
+    /// Copies of the present state.
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            time: self.time(),
+            steps: self.steps(),
+            dt: self.dt(),
+            positions: self.positions().to_vec(),
+            velocities: self.velocities().to_vec(),
+            densities: self.densities().to_vec(),
+            kinds: self.kinds().to_vec(),
+            ids: self.ids().to_vec(),
+            n_excluded: self.n_excluded(),
+        }
+    }
 }
 
 /// Integrator history.
@@ -204,6 +223,8 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     energy0: (Real, Real),
     /// See [`Simulation::stop_flag`]; read once per step, never inside a particle loop.
     stop: Arc<AtomicBool>,
+    /// See [`Simulation::snapshot_exchange`]; its request flag is read once per step.
+    snapshots: Arc<SnapshotExchange>,
 }
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
@@ -321,8 +342,10 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         &self.c
     }
 
-    /// [`Error::Interrupted`] if the stop flag is set (between two steps: the state is whole).
-    fn check_stop(&self) -> Result<()> {
+    /// Between two steps, where the state is whole: answers a snapshot request, then
+    /// [`Error::Interrupted`] if the stop flag is set.
+    fn between_steps(&self) -> Result<()> {
+        self.snapshots.serve(|| Simulation::snapshot(self));
         if self.stop.load(Ordering::Relaxed) {
             return Err(Error::Interrupted { step: self.steps, time: self.time });
         }
@@ -371,7 +394,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     fn step(&mut self, n: u64) -> Result<()> {
         on_pool(|| {
             for _ in 0..n {
-                self.check_stop()?;
+                self.between_steps()?;
                 let mut timer = phases::Timer::start();
                 self.step_once()?;
                 timer.lap(Phase::Step);
@@ -385,7 +408,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
         }
         on_pool(|| {
             while self.time < until {
-                self.check_stop()?;
+                self.between_steps()?;
                 self.step_once()?;
             }
             Ok(())
@@ -510,6 +533,9 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
     }
     fn stop_flag(&self) -> Arc<AtomicBool> {
         Arc::clone(&self.stop)
+    }
+    fn snapshot_exchange(&self) -> Arc<SnapshotExchange> {
+        Arc::clone(&self.snapshots)
     }
 }
 
