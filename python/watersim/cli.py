@@ -726,12 +726,17 @@ def analysis_notes(analysis: dict[str, Any]) -> list[str]:
 
 
 def _stop_message(error: dict[str, Any]) -> str:
-    """Why a run stopped, never empty (a Ctrl-C carries no message of its own)."""
-    if error.get("message"):
-        return str(error["message"])
-    if error.get("type") in ("KeyboardInterrupt", "TerminatedError"):
+    """Why a run stopped, never empty nor blank (a Ctrl-C carries no message of its own, and an
+    exception's may be only white space): its message, else what the error says of itself."""
+    message = str(error.get("message") or "").strip()
+    if message:
+        return message
+    kind = str(error.get("type") or "").strip()
+    if kind in ("KeyboardInterrupt", "TerminatedError"):
         return "interrupted (Ctrl-C); the outputs written so far are kept"
-    return str(error.get("type") or "unknown error")
+    if error.get("kind"):
+        return f"{kind or 'instability'}: {error['kind']} at step {error.get('step')}"
+    return f"{kind} (no message)" if kind else "unknown error (no message)"
 
 
 def cmd_resume(args: argparse.Namespace) -> int:

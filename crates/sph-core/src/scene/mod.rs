@@ -126,7 +126,12 @@ impl Scene {
 
     /// Wall thickness in layers: enough to cover the kernel support `2h`.
     pub fn layers(&self) -> usize {
-        self.boundary_layers.unwrap_or_else(|| (2.0 * self.h() / self.dp - 1e-9).ceil() as usize)
+        self.boundary_layers.unwrap_or_else(|| self.layers_for_coefh(self.coefh))
+    }
+
+    /// The layers that cover the support `2h` of a smoothing length of `coefh`.
+    pub(crate) fn layers_for_coefh(&self, coefh: Real) -> usize {
+        (2.0 * coefh * (self.dim as Real).sqrt() - 1e-9).ceil() as usize
     }
 
     /// Still-water depth used for the sound speed.
@@ -147,10 +152,15 @@ impl Scene {
 
     /// Estimated particle count: fluid boxes plus a wall shell `layers` thick around the tank.
     pub fn estimated_particles(&self) -> f64 {
+        self.estimated_particles_with(self.layers())
+    }
+
+    /// [`Scene::estimated_particles`] with walls of `layers` layers.
+    pub(crate) fn estimated_particles_with(&self, layers: usize) -> f64 {
         let dim = self.dim;
         let cell = self.dp.powi(dim as i32);
         let fluid: f64 = self.fluid.iter().map(|b| (0..dim).map(|k| b.max[k] - b.min[k]).product::<f64>()).sum();
-        let t = self.layers() as f64 * self.dp;
+        let t = layers as f64 * self.dp;
         let outer: f64 = (0..dim)
             .map(|k| self.tank.max[k] - self.tank.min[k] + if k == dim - 1 { t } else { 2.0 * t })
             .product();
@@ -161,8 +171,13 @@ impl Scene {
     /// Cells of the neighbour grid: the tank with its walls and as much again above it, in
     /// cells of side `h` (half the support, see `simulation.rs`).
     pub fn estimated_cells(&self) -> f64 {
+        self.estimated_cells_with(self.layers())
+    }
+
+    /// [`Scene::estimated_cells`] with walls of `layers` layers.
+    pub(crate) fn estimated_cells_with(&self, layers: usize) -> f64 {
         let dim = self.dim;
-        let t = self.layers() as f64 * self.dp;
+        let t = layers as f64 * self.dp;
         let cell = self.h();
         (0..dim)
             .map(|k| {
@@ -225,6 +240,9 @@ mod tests {
             (dambreak_json(r#", "shifting": {"coeff": 2}"#), "shifting"),
             (dambreak_json(r#", "boundary": {"model": "mirror"}"#), "boundary"),
             (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
+            // the wall shell of a huge support or of too many layers: not dp's fault
+            (dambreak_json(r#", "coefh": 1e6"#), "coefh"),
+            (dambreak_json(r#", "boundary_layers": 100000000"#), "boundary_layers"),
             (dambreak_json(r#", "obstacles": [{"shape": "plane", "point": [0, 0], "normal": [0, 0]}]"#), "obstacles[0].normal"),
             (r#"{"dim": 2, "dp": 0.0, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [1, 2]}]}"#.to_string(), "dp"),
             (r#"{"dim": 2, "dp": 0.1, "tank": {"min": [0, 0], "max": [4, 3]}, "fluid": [{"min": [0, 0], "max": [5, 2]}]}"#.to_string(), "fluid[0]"),

@@ -258,27 +258,48 @@ impl Scene {
     /// `48 dim + 100` bytes per particle, see docs/physics-options.md).
     fn validate_memory(&self) -> Result<()> {
         let limit = self.memory_limit_bytes.or_else(available_memory_bytes).map_or(f64::INFINITY, |b| b as f64);
-        let particles = self.estimated_particles();
         // cell starts of three groups plus the sort cursor, 16 bytes per cell of the grid
-        let cells = self.estimated_cells();
-        let particle_bytes = particles * (48.0 * self.dim as f64 + 100.0);
-        let bytes = particle_bytes + 16.0 * cells;
+        let bytes_with = |layers: usize| {
+            let particle_bytes = self.estimated_particles_with(layers) * (48.0 * self.dim as f64 + 100.0);
+            (particle_bytes, 16.0 * self.estimated_cells_with(layers))
+        };
+        let layers = self.layers();
+        let (particle_bytes, grid_bytes) = bytes_with(layers);
+        let bytes = particle_bytes + grid_bytes;
         if !(bytes <= limit) {
-            // a grid larger than the particles means h is tiny for the tank: blame coefh
-            let (field, fix) = if 16.0 * cells > particle_bytes { ("coefh", "increase coefh") } else { ("dp", "use a larger dp") };
+            let fits = |layers: usize| {
+                let (p, g) = bytes_with(layers);
+                p + g <= limit
+            };
+            let coefh_layers = self.layers_for_coefh(self.coefh);
+            let default_layers = self.layers_for_coefh(super::default::coefh());
+            // The field whose usual value would make the run fit: a grid larger than the
+            // particles means h is tiny for the tank; a wall shell that fits with the layers
+            // the support needs means boundary_layers, and one that fits with the default
+            // coefh's layers means a huge coefh (its walls follow the support); else dp.
+            let (field, fix) = if grid_bytes > particle_bytes {
+                ("coefh", "increase coefh".to_string())
+            } else if self.boundary_layers.is_some() && layers > coefh_layers && fits(coefh_layers) {
+                ("boundary_layers", format!("{layers} layers of dp; the support needs {coefh_layers}"))
+            } else if self.boundary_layers.is_none() && layers > default_layers && fits(default_layers) {
+                ("coefh", format!("coefh = {} asks for walls of {layers} layers of dp; use a smaller coefh", self.coefh))
+            } else {
+                ("dp", "use a larger dp".to_string())
+            };
             return Err(Error::invalid(
                 field,
                 format!(
-                    "dp = {} and h = {:e} m need about {:.3e} particles and {:.3e} grid cells, {:.2} GiB, more than the {:.2} GiB allowed; {fix}",
+                    "dp = {} m, h = {:e} m and {layers} wall layers need about {:.3e} particles and {:.3e} grid cells, {:.3e} GiB, more than the {:.2} GiB allowed; {fix}",
                     self.dp,
                     self.h(),
-                    particles,
-                    cells,
+                    self.estimated_particles(),
+                    self.estimated_cells(),
                     bytes / 1024f64.powi(3),
                     limit / 1024f64.powi(3)
                 ),
             ));
         }
+        let cells = self.estimated_cells();
         if !(cells < u32::MAX as f64) {
             return Err(Error::invalid(
                 "coefh",
