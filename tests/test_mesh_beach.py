@@ -11,6 +11,8 @@ from typing import Any
 import meshio
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import watersim as ws
 from watersim import SceneError
@@ -221,3 +223,74 @@ def test_bad_meshes_are_refused_naming_the_field(tmp_path: Path, make: Any, fiel
         make(tmp_path)
     message = str(info.value)
     assert message.startswith(f"{field}: ") and reason in message, message
+
+
+def _heights_by_testing_every_triangle(points: np.ndarray, triangles: np.ndarray,
+                                       x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The oracle: every point against every upward-facing triangle, as surface_height did
+    before its grid (the same arithmetic per pair)."""
+    v0, v1, v2 = (points[triangles[:, k]] for k in range(3))
+    nz = ((v1[:, 0] - v0[:, 0]) * (v2[:, 1] - v0[:, 1])
+          - (v1[:, 1] - v0[:, 1]) * (v2[:, 0] - v0[:, 0]))
+    scale = float(np.max(np.ptp(points, axis=0))) or 1.0
+    up = nz > 1e-12 * scale**2
+    a, b, c, det = v0[up], v1[up], v2[up], nz[up]
+    px, py, tol = x[:, None], y[:, None], 1e-9 * scale
+    w0 = ((b[:, 0] - px) * (c[:, 1] - py) - (b[:, 1] - py) * (c[:, 0] - px)) / det
+    w1 = ((c[:, 0] - px) * (a[:, 1] - py) - (c[:, 1] - py) * (a[:, 0] - px)) / det
+    w2 = 1.0 - w0 - w1
+    lengths = np.sqrt(det)
+    inside = (w0 * lengths >= -tol) & (w1 * lengths >= -tol) & (w2 * lengths >= -tol)
+    top = np.max(np.where(inside, w0 * a[:, 2] + w1 * b[:, 2] + w2 * c[:, 2], -np.inf), axis=1)
+    return np.where(np.isfinite(top), top, np.nan)
+
+
+@settings(max_examples=25, deadline=None)
+@given(nx=st.integers(2, 40), ny=st.integers(2, 12), seed=st.integers(0, 2**32 - 1))
+def test_surface_height_matches_testing_every_triangle(nx: int, ny: int, seed: int) -> None:
+    """The grid of triangle boxes finds exactly the heights of the brute-force test, at random
+    points, on the mesh's vertices and edges, and outside it (a 1M-triangle bed's profile took
+    minutes with the brute force: docs/stability.md)."""
+    rng = np.random.default_rng(seed)
+    length, width = 3.0, 0.5
+    x = np.linspace(1.0, length, nx)
+    y = np.linspace(0.0, width, ny)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    z = 0.05 + 0.1 * (gx - 1.0) + 0.02 * rng.random(gx.shape)
+    top = np.stack([gx, gy, z], -1).reshape(-1, 3)
+    bottom = top * np.array([1.0, 1.0, 0.0])
+    points = np.concatenate([top, bottom])
+    t = np.arange(nx * ny).reshape(nx, ny)
+    q = t[:-1, :-1], t[1:, :-1], t[1:, 1:], t[:-1, 1:]
+    tris = np.concatenate([np.stack([q[0], q[1], q[2]], -1).reshape(-1, 3),
+                           np.stack([q[0], q[2], q[3]], -1).reshape(-1, 3)])
+    tris = np.concatenate([tris, tris[:, ::-1] + nx * ny])  # the closed slab's bottom, facing down
+    px = np.concatenate([rng.uniform(0.5, length + 0.5, 300), top[:, 0],
+                         0.5 * (top[:-1, 0] + top[1:, 0])])
+    py = np.concatenate([rng.uniform(-0.1, width + 0.1, 300), top[:, 1],
+                         0.5 * (top[:-1, 1] + top[1:, 1])])
+    got = surface_height(points, tris, px, py)
+    want = _heights_by_testing_every_triangle(points, tris, px, py)
+    assert np.array_equal(got, want, equal_nan=True)
+
+
+@pytest.mark.parametrize("binary", [True, False])
+def test_a_mesh_beyond_the_memory_is_refused_before_it_is_read(
+        tmp_path: Path, binary: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The triangle count comes from the STL's header (binary) or its ``endfacet`` lines
+    (ASCII) before meshio reads the file; the limit is the memory over the bytes a triangle
+    costs (here made small)."""
+    from watersim import meshbed
+
+    path = _write(tmp_path / "bed.stl", WEDGE_V, WEDGE_T, binary=binary)
+    assert meshbed.stl_triangle_count(path) == len(WEDGE_T)
+    monkeypatch.setattr(meshbed, "max_triangles", lambda: len(WEDGE_T) - 1)
+
+    def never(*_a: Any, **_k: Any) -> None:
+        raise AssertionError("meshio read the file")
+
+    monkeypatch.setattr(meshio, "read", never)
+    with pytest.raises(SceneError, match=rf"beach.path: .* holds {len(WEDGE_T)} triangles"):
+        ws.MeshBeach(path=str(path))
+    with pytest.raises(SceneError, match="beach.triangles: .* holds"):
+        ws.MeshBeach(vertices=WEDGE_V.tolist(), triangles=WEDGE_T.tolist())

@@ -81,6 +81,7 @@ from .measure import (
     water_column_height,
 )
 from .output import RunLog, RunOutputs
+from .run_memory import estimate_run_memory
 from .runrecord import RUN_FIELDS, error_record, rayon_threads, run_record, stop_status
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
@@ -476,6 +477,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         args.sample_every = 0.01
     keeper = _last_good_keeper(args)
     sim = builder.build()  # the core's checks (memory, ...) come before the output folder
+    _check_run_memory(args, sim, scene, snapshot_every, flume=False)
     with rundir.RunFolder(out, args.overwrite):
         return _run_particles(args, scene, out, sim, keeper, snapshot_every, progress)
 
@@ -552,9 +554,23 @@ def _run_flume(
     settings = _FlumeSettings.parse(args, scene)
     # the core's checks (memory, ...) come before the output folder
     sim = scene.builder.build() if resumed is None else resumed.sim
+    _check_run_memory(args, sim, scene, snapshot_every, flume=True)
     with rundir.RunFolder(out, getattr(args, "overwrite", False), claim=resumed is None):
         return _run_flume_held(args, scene, notes, out, sim, settings, snapshot_every, progress,
                                resumed)
+
+
+def _check_run_memory(args: argparse.Namespace, sim: Simulation, scene: SceneFile,
+                      snapshot_every: float | None, flume: bool) -> None:
+    """Refuses, before the output folder is made, a run whose peak memory (the built state,
+    the last good state, the gauge records to the end, a snapshot) would not fit
+    (:mod:`watersim.run_memory`); says the estimate otherwise."""
+    until = float(scene.builder.until)  # type: ignore[arg-type]
+    estimate = estimate_run_memory(sim, until, snapshots=snapshot_every is not None,
+                                   flume=flume)
+    estimate.check()
+    _say(args)(f"memory: about {estimate.total / 1024**3:.3g} GiB at the peak "
+               f"({estimate.describe()})")
 
 
 @dataclass(frozen=True)

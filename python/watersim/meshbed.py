@@ -19,6 +19,7 @@ the bed profile along the centre line) by casting vertical rays on the mesh.
 
 from __future__ import annotations
 
+import math
 import os
 import warnings
 from pathlib import Path
@@ -30,6 +31,7 @@ from ._core import SceneError
 
 __all__ = [
     "check_closed_mesh",
+    "check_triangle_count",
     "enclosed_volume",
     "merge_duplicate_vertices",
     "profile_along_line",
@@ -38,8 +40,8 @@ __all__ = [
 ]
 
 _QUERY_BLOCK = 4_000_000
-"""Largest (points x triangles) block of the vectorised ray casting (about 100 MB of float64
-temporaries)."""
+"""Largest block of (point, triangle) pairs of the vectorised ray casting (about 100 MB of
+float64 temporaries)."""
 
 
 def read_triangle_mesh(path: str | os.PathLike[str], field: str = "path"
@@ -59,6 +61,8 @@ def read_triangle_mesh(path: str | os.PathLike[str], field: str = "path"
     if not p.is_file():
         raise SceneError(f"{field}: no such file {str(p)!r}")
     fmt = "stl" if p.suffix.lower() == ".stl" else None
+    if fmt == "stl":
+        check_triangle_count(stl_triangle_count(p), field, str(p))
     try:
         with warnings.catch_warnings():
             # meshio first reads an STL's triangle count as binary, which overflows (a
@@ -78,11 +82,61 @@ def read_triangle_mesh(path: str | os.PathLike[str], field: str = "path"
     triangles = np.concatenate(blocks) if blocks else np.zeros((0, 3), dtype=np.int64)
     if triangles.shape[0] == 0:
         raise SceneError(f"{field}: {str(p)!r} holds no triangles")
+    check_triangle_count(triangles.shape[0], field, str(p))
     points = np.asarray(mesh.points, dtype=np.float64)
     if points.ndim != 2 or points.shape[1] != 3:
         raise SceneError(f"{field}: {str(p)!r} has {points.shape[-1]}-D points; a bed mesh "
                          "needs x, y, z")
     return points, triangles
+
+
+MESH_BYTES_PER_TRIANGLE = 2500
+"""Peak memory a mesh beach costs per triangle from its file to the built simulation [bytes]:
+meshio's arrays, the merged and checked mesh, its JSON for the core and the core's copy
+(measured: see docs/stability.md, "Memory of a run")."""
+
+
+def max_triangles() -> int:
+    """The most triangles a mesh may have: the memory available (80 % of ``MemAvailable``, as
+    the core's check) over :data:`MESH_BYTES_PER_TRIANGLE`."""
+    from .run_memory import available_memory_bytes
+
+    available = available_memory_bytes({})
+    return int(available // MESH_BYTES_PER_TRIANGLE) if math.isfinite(available) else 2**62
+
+
+def check_triangle_count(count: int, field: str, source: str) -> None:
+    """Refuses a mesh of more triangles than :func:`max_triangles`.
+
+    Raises:
+        SceneError: ``field: reason`` with the count and the limit.
+    """
+    limit = max_triangles()
+    if count > limit:
+        raise SceneError(
+            f"{field}: {source!r} holds {count} triangles; a mesh beach needs about "
+            f"{MESH_BYTES_PER_TRIANGLE} bytes a triangle to read, check and build, so at most "
+            f"{limit} fit in the memory available: simplify (decimate) the mesh")
+
+
+def stl_triangle_count(path: Path) -> int:
+    """The triangles of an STL file, read without loading it: a binary file's header count
+    (its size is then 84 + 50 bytes a triangle), else the ``endfacet`` lines of an ASCII one,
+    counted in 16 MiB pieces."""
+    size = path.stat().st_size
+    with open(path, "rb") as f:
+        head = f.read(84)
+        if len(head) == 84:
+            n = int(np.frombuffer(head[80:84], dtype="<u4")[0])
+            if size == 84 + 50 * n:
+                return n
+        f.seek(0)
+        count, tail = 0, b""
+        while piece := f.read(1 << 24):
+            text = tail + piece
+            count += text.count(b"endfacet")
+            tail = text[-7:]  # a keyword cut between two pieces is counted in the next
+        return count
 
 
 def merge_duplicate_vertices(points: npt.ArrayLike, triangles: npt.ArrayLike
@@ -175,6 +229,10 @@ def surface_height(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.in
     For a closed mesh the highest crossing is on an upward-facing triangle, so only those are
     tested: a point is over a triangle when its barycentric coordinates in the triangle's
     horizontal projection are all >= 0 (edges included), and z there is the barycentric mix.
+    Each point is tested only against the triangles whose horizontal bounding box (padded by
+    far more than the edge tolerance) holds it, found in a uniform grid of those boxes
+    (:class:`_BoxGrid`): the same tests, so the same heights, as testing every triangle, in
+    time about proportional to points plus triangles instead of their product.
     """
     xq = np.atleast_1d(np.asarray(x, dtype=np.float64))
     yq = np.atleast_1d(np.asarray(y, dtype=np.float64))
@@ -189,24 +247,78 @@ def surface_height(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.in
     up = nz > 1e-12 * scale**2
     a, b, c, det = v0[up], v1[up], v2[up], nz[up]
     out = np.full(xq.shape, np.nan)
-    if a.shape[0] == 0:
+    if a.shape[0] == 0 or xq.size == 0:
         return out.reshape(shape)
     tol = 1e-9 * scale
-    block = max(1, _QUERY_BLOCK // a.shape[0])
-    for s in range(0, xq.size, block):
-        px, py = xq[s:s + block, None], yq[s:s + block, None]
+    grid = _BoxGrid(a, b, c, pad=1e-6 * scale)
+    point_ids, tri_ids = grid.candidates(xq, yq)
+    if point_ids.size == 0:
+        return out.reshape(shape)
+    top = np.full(xq.shape, -np.inf)
+    for s in range(0, point_ids.size, _QUERY_BLOCK):
+        i, t = point_ids[s:s + _QUERY_BLOCK], tri_ids[s:s + _QUERY_BLOCK]
+        px, py = xq[i], yq[i]
+        ta, tb, tc, tdet = a[t], b[t], c[t], det[t]
         # barycentric weights of the projection (2D cross products over twice the area)
-        w0 = ((b[:, 0] - px) * (c[:, 1] - py) - (b[:, 1] - py) * (c[:, 0] - px)) / det
-        w1 = ((c[:, 0] - px) * (a[:, 1] - py) - (c[:, 1] - py) * (a[:, 0] - px)) / det
+        w0 = ((tb[:, 0] - px) * (tc[:, 1] - py) - (tb[:, 1] - py) * (tc[:, 0] - px)) / tdet
+        w1 = ((tc[:, 0] - px) * (ta[:, 1] - py) - (tc[:, 1] - py) * (ta[:, 0] - px)) / tdet
         w2 = 1.0 - w0 - w1
         # a tolerance in length units: points on a shared edge belong to both triangles
-        lengths = np.sqrt(det)
+        lengths = np.sqrt(tdet)
         inside = (w0 * lengths >= -tol) & (w1 * lengths >= -tol) & (w2 * lengths >= -tol)
-        z = w0 * a[:, 2] + w1 * b[:, 2] + w2 * c[:, 2]
-        z = np.where(inside, z, -np.inf)
-        top = np.max(z, axis=1)
-        out[s:s + block] = np.where(np.isfinite(top), top, np.nan)
+        z = w0 * ta[:, 2] + w1 * tb[:, 2] + w2 * tc[:, 2]
+        np.maximum.at(top, i, np.where(inside, z, -np.inf))
+    hit = np.isfinite(top)
+    out[hit] = top[hit]
     return out.reshape(shape)
+
+
+class _BoxGrid:
+    """The horizontal bounding boxes of triangles in a uniform grid of cells: each cell lists
+    the triangles whose (padded) box overlaps it, so the triangles over a point are among those
+    of its cell. Cells are about the median box size (a triangle then lists itself in up to
+    four cells), with at most four cells per triangle overall."""
+
+    def __init__(self, a: npt.NDArray[np.float64], b: npt.NDArray[np.float64],
+                 c: npt.NDArray[np.float64], pad: float) -> None:
+        lo = np.minimum(np.minimum(a, b), c)[:, :2] - pad
+        hi = np.maximum(np.maximum(a, b), c)[:, :2] + pad
+        self.origin = lo.min(axis=0)
+        span = np.maximum(hi.max(axis=0) - self.origin, pad)
+        n_tri = lo.shape[0]
+        cell = np.maximum(np.median(hi - lo, axis=0), np.sqrt(span[0] * span[1] / (4.0 * n_tri)))
+        self.cell = np.minimum(cell, span)
+        self.shape = np.maximum(np.ceil(span / self.cell).astype(np.int64), 1)
+        first, last = self._cell_of(lo), self._cell_of(hi)
+        across = last - first + 1
+        counts = across[:, 0] * across[:, 1]
+        tri = np.repeat(np.arange(n_tri), counts)
+        k = np.arange(tri.size) - np.repeat(np.cumsum(counts) - counts, counts)
+        cx = first[tri, 0] + k % across[tri, 0]
+        cy = first[tri, 1] + k // across[tri, 0]
+        key = cy * self.shape[0] + cx
+        order = np.argsort(key, kind="stable")
+        self.triangles = tri[order]
+        self.starts = np.searchsorted(key[order], np.arange(self.shape[0] * self.shape[1] + 1))
+
+    def _cell_of(self, xy: npt.NDArray[np.float64]) -> npt.NDArray[np.int64]:
+        ij = np.floor((xy - self.origin) / self.cell).astype(np.int64)
+        return np.clip(ij, 0, self.shape - 1)
+
+    def candidates(self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]
+                   ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+        """``(point, triangle)`` index pairs: every triangle listed in each point's cell (none
+        for a point outside the grid), grouped by point."""
+        xy = np.stack([x, y], axis=1)
+        ij = np.floor((xy - self.origin) / self.cell)
+        outside = np.any((ij < 0) | (ij >= self.shape), axis=1) | ~np.all(np.isfinite(xy), axis=1)
+        ij = np.where(outside[:, None], 0, ij).astype(np.int64)
+        key = ij[:, 1] * self.shape[0] + ij[:, 0]
+        begin = self.starts[key]
+        counts = np.where(outside, 0, self.starts[key + 1] - begin)
+        points = np.repeat(np.arange(x.size), counts)
+        k = np.arange(points.size) - np.repeat(np.cumsum(counts) - counts, counts)
+        return points, self.triangles[begin[points] + k]
 
 
 def profile_along_line(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.int64],

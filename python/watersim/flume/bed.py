@@ -248,6 +248,7 @@ class MeshBeach(_Bed):
             if not np.all(tri_f == np.round(tri_f)):
                 raise SceneError("beach.triangles: vertex indices must be whole numbers")
             tri = tri_f.astype(np.int64)
+            meshbed.check_triangle_count(tri.shape[0], "beach.triangles", "the triangles given")
             if tri.min() < 0 or tri.max() >= raw.shape[0]:
                 raise SceneError(f"beach.triangles: indices must lie in [0, {raw.shape[0] - 1}] "
                                  f"(the vertices), got {int(tri.min())}..{int(tri.max())}")
