@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import os
 from pathlib import Path
 
@@ -212,3 +213,34 @@ def test_an_absurd_coefsound_is_warned_about(capsys: pytest.CaptureFixture[str],
     with pytest.warns(UserWarning, match="coefsound = 1e\\+10"):
         ws.DamBreak(dim=2, dp=0.1, coefsound=1e10)
     assert cli.main(["show-scene", "dambreak2d", "--set", "coefsound=1e10"]) == 0
+
+
+@settings(max_examples=30, deadline=None)
+@given(until=st.floats(min_value=1e-300, max_value=1e6),
+       time=st.floats(min_value=0.0, max_value=1e6))
+def test_the_next_progress_report_is_found_at_once(until: float, time: float) -> None:
+    """A run says how far it is every tenth of its end time; the next report time comes from
+    a division, not a count (an until of 1e-300 took 1e297 additions: the sweep's one hang)."""
+    following = cli.next_report_time(time, until)
+    assert following > time
+    assert following <= time + until / 10.0 * (1 + 1e-9) or following == math.nextafter(
+        time, math.inf)
+
+
+def test_a_tiny_until_runs_and_ends(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    code = cli.main(["run", "dambreak2d", "--set", "dp=0.1", "--set", "until=1e-300", "--quiet",
+                     "--out", str(tmp_path / "o")])
+    assert code == 0, capsys.readouterr().err
+
+
+@settings(max_examples=5, deadline=None)
+@given(levels=st.integers(min_value=17, max_value=20000))
+def test_any_long_set_key_is_refused_quoting_its_start(levels: int) -> None:
+    from watersim.builtin_cases import builder_from_args
+    from watersim.errors import CliError
+
+    key = ".".join(["a"] * levels)
+    for case in ("dambreak2d", "flume2d"):
+        with pytest.raises(CliError, match="--set: key too long") as info:
+            builder_from_args(case, [f"{key}=1"])
+        assert len(str(info.value)) < 300

@@ -273,8 +273,16 @@ class _Recorder:
         if sim.time >= self._next_report:
             front = f", front {self.fronts[-1]:.3f} m" if self.fronts else ""
             self.say(f"  t = {sim.time:.3f} s, {sim.steps} steps, dt = {sim.dt:.3g} s{front}")
-            while self._next_report <= sim.time:
-                self._next_report += self.until / 10.0
+            self._next_report = next_report_time(sim.time, self.until)
+
+
+def next_report_time(time: float, until: float) -> float:
+    """The first tenth of ``until`` after ``time``: when a run next says how far it is. Found
+    at once, never counted up to (an ``until`` of 1e-300 would take 1e297 additions)."""
+    step = until / 10.0
+    if not step > 0.0:
+        return math.inf
+    return max((math.floor(time / step) + 1.0) * step, math.nextafter(time, math.inf))
 
 
 def _run_input(args: argparse.Namespace) -> SceneFile:
@@ -338,10 +346,7 @@ def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, floa
     until = float(scene.builder.until)  # type: ignore[arg-type]
     for name, every in (("--sample-every", args.sample_every), ("--snapshot-every", snapshot_every)):
         if every is not None:
-            try:
-                check_interval_resolved(name, every, until)
-            except ValueError as e:
-                raise CliError(str(e)) from None
+            _check_resolved(name, every, until)
     if args.save_last_good:  # checked now: the run must not end in a save that cannot be done
         check_output_file(args.save_last_good)
     if args.progress is None:
@@ -349,6 +354,19 @@ def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, floa
     else:
         progress = bool(args.progress)
     return out, snapshot_every, progress
+
+
+def _check_resolved(name: str, every: float, until: float) -> None:
+    """:func:`check_interval_resolved` for a command-line interval (its default included: a
+    dam break's 0.01 s samples are refused before a run to t = 1e9 s, not by its first stop).
+
+    Raises:
+        CliError: naming ``name``.
+    """
+    try:
+        check_interval_resolved(name, every, until)
+    except ValueError as e:
+        raise CliError(str(e)) from None
 
 
 def _say(args: argparse.Namespace) -> Callable[[str], None]:
@@ -475,6 +493,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     builder = scene.builder
     if args.sample_every is None:
         args.sample_every = 0.01
+        _check_resolved("--sample-every", args.sample_every, float(builder.until))  # type: ignore[arg-type]
     keeper = _last_good_keeper(args)
     sim = builder.build()  # the core's checks (memory, ...) come before the output folder
     _check_run_memory(args, sim, scene, snapshot_every, flume=False)
@@ -662,8 +681,7 @@ def _advance_flume(
         if not progress and s.time >= next_report[0]:
             run.say(f"  t = {s.time:.3f} s, {s.steps} steps, dt = {s.dt:.3g} s, "
                     f"wall {time.perf_counter() - t_start:.1f} s")
-            while next_report[0] <= s.time:
-                next_report[0] += run.until / 10.0
+            next_report[0] = next_report_time(s.time, run.until)
 
     def sample_and_keep(s: Simulation) -> None:
         on_sample(s)

@@ -48,6 +48,20 @@ MAX_KEY_PARTS = 16
 MAX_KEY_LENGTH = 256
 """The longest ``--set`` key [characters]."""
 
+
+def _check_key_size(key: str) -> None:
+    """Refuses a key longer than :data:`MAX_KEY_LENGTH` or of more than :data:`MAX_KEY_PARTS`
+    parts, quoting only its start (every --set is checked so, whatever reads it).
+
+    Raises:
+        OverrideError: naming ``--set``.
+    """
+    if len(key) > MAX_KEY_LENGTH or key.count(".") >= MAX_KEY_PARTS:
+        raise OverrideError(f"--set: key too long ({len(key)} characters, "
+                            f"{key.count('.') + 1} parts; at most {MAX_KEY_LENGTH} and "
+                            f"{MAX_KEY_PARTS}): {key[:60]!r}...")
+
+
 _TOKEN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[\d+\])*)$")
 
 Token = str | int
@@ -98,6 +112,7 @@ class Override:
         key = key.strip()
         if not sep or not key:
             raise OverrideError(f"--set: expected key=value, got {item!r}")
+        _check_key_size(key)
         return cls(key, text)
 
     def path(self) -> list[Token]:
@@ -106,10 +121,7 @@ class Override:
         Raises:
             OverrideError: a key that is not names joined by dots with ``[i]`` indices.
         """
-        if len(self.key) > MAX_KEY_LENGTH or self.key.count(".") >= MAX_KEY_PARTS:
-            raise OverrideError(f"--set: key too long ({len(self.key)} characters, "
-                                f"{self.key.count('.') + 1} parts; at most {MAX_KEY_LENGTH} and "
-                                f"{MAX_KEY_PARTS}): {self.key[:60]!r}...")
+        _check_key_size(self.key)
         out: list[Token] = []
         for part in self.key.split("."):
             m = _TOKEN.match(part.strip())

@@ -205,7 +205,14 @@ class RegularWave(_Wave):
                 theory, self.height, self.period, depth, self.phase, g  # type: ignore[arg-type]
             )
         except ValueError as exc:
-            raise SceneError(f"wave.{exc}") from None
+            # the theory names its argument ("height: ..."); anything else (a NaN from an absurd
+            # gravity or depth) is the wave's as a whole
+            name, sep, _ = str(exc).partition(": ")
+            named = sep and name.isidentifier()
+            raise SceneError(f"wave.{exc}" if named else
+                             f"wave: no {theory} wave of H = {self.height:g} m, T = "
+                             f"{self.period:g} s in d = {depth:g} m under g = {g:g} m/s^2 "
+                             f"({exc})") from None
         gain = self.stroke_gain
         omega = motion.omega
         strokes = _quantised(motion.stroke_amplitudes)
