@@ -189,13 +189,14 @@ def main() -> int:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--limit", type=float, default=120.0, help="wall limit per input [s]")
     parser.add_argument("--json", type=Path)
+    parser.add_argument("--only", metavar="REGEX", help="the inputs whose label matches")
     args = parser.parse_args()
     os.environ.update(RAYON_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     sys.path.insert(0, str(ROOT / "python"))
     import watersim.cli  # noqa: F401 - imported once, before the children are forked
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
-        cases = inputs(tmp)
+        cases = [c for c in inputs(tmp) if args.only is None or re.search(args.only, c[0])]
         with ThreadPoolExecutor(args.jobs) as pool:
             records = list(pool.map(lambda c: run_one(c[0], c[1], tmp, args.limit), cases))
     counts: dict[str, int] = {}

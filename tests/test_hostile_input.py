@@ -244,3 +244,24 @@ def test_any_long_set_key_is_refused_quoting_its_start(levels: int) -> None:
         with pytest.raises(CliError, match="--set: key too long") as info:
             builder_from_args(case, [f"{key}=1"])
         assert len(str(info.value)) < 300
+
+
+@settings(max_examples=50, deadline=None)
+@given(k=st.integers(0, 10**6), every=st.floats(1e-6, 10.0),
+       time=st.floats(0.0, 1e300, allow_subnormal=False))
+def test_the_next_sample_stop_is_found_at_once(k: int, every: float, time: float) -> None:
+    """The run's next stop after a step far past its sample times (gravity = 1e-300 gave one
+    step of 1e147 s: 1e149 additions) is the first ``t0 + k every`` beyond the time."""
+    from watersim.simulation import _next_stop
+
+    nxt = _next_stop(k, 0.0, every, time)
+    assert nxt > k and nxt * every > time
+    if nxt > k + 1 and (nxt - 1) * every != nxt * every:  # the minimal one, where resolved
+        assert (nxt - 1) * every <= time
+
+
+def test_one_step_far_past_the_end_ends_the_run(tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    code = cli.main(["run", "dambreak2d", "--set", "dp=0.1", "--set", "gravity=1e-300",
+                     "--set", "until=0.02", "--quiet", "--out", str(tmp_path / "o")])
+    assert code == 0, capsys.readouterr().err

@@ -342,8 +342,7 @@ class Simulation:
                     if t_i is None or self._sim.time < t_i:
                         continue
                     callback(self)
-                    while t0 + ks[i] * every <= self._sim.time:
-                        ks[i] += 1
+                    ks[i] = _next_stop(ks[i], t0, every, self._sim.time)
             if self._sim.time < until:
                 self._advance(until, bar)
                 for _, callback in schedule:
@@ -386,6 +385,19 @@ class Snapshot:
     """(N,) [kg/m^3]."""
     kinds: npt.NDArray[np.uint8]
     ids: npt.NDArray[np.uint32]
+
+
+def _next_stop(k: int, t0: float, every: float, time: float) -> int:
+    """The first ``k' > k`` with ``t0 + k' every > time``: found by division, not counted up
+    to (one step of 1e147 s past 0.01 s samples would be 1e149 additions), and grown by a
+    factor where ``k' every`` no longer resolves ``k' + 1`` (beyond 2**53)."""
+    k = max(k + 1, math.floor((time - t0) / every))
+    while t0 + k * every <= time:
+        following = k + 1
+        if t0 + following * every == t0 + k * every:  # k every no longer resolves k + 1
+            following = max(following, int(k * (1.0 + 1e-15)) + 1)
+        k = following
+    return k
 
 
 STOP_RESOLUTION = 1e-9
