@@ -21,6 +21,7 @@ from watersim.validation.cases import (
     _flume2d_items,
     secondorder_scene,
 )
+from watersim.validation.longflume import long_flume_scene
 
 
 def _filled(sim: ws.Simulation, dp: float) -> tuple[float, float | None]:
@@ -132,13 +133,15 @@ def test_a_case_dp_set_by_hand_must_divide_the_depth() -> None:
 def _validation_scene(name: str, dp: float) -> ws.FlumeScene:
     """The validation case's scene at dp, built the way its runner builds it (flume2d,
     secondorder2d and absorption2d by their helpers; bar2d, solitary2d and kimmoun2d are the
-    built-in cases with dp set, at the case's depth)."""
+    built-in cases with dp set, at the case's depth; flume2d-long by its scene function)."""
     if name == "absorption2d":
         return absorption_scene(ws.Flap(absorption=True), dp, periods=1)
     if name == "flume2d":
         return _flume2d_items(dp, 2)[0]
     if name == "secondorder2d":
         return secondorder_scene(dp, 2)
+    if name == "flume2d-long":
+        return long_flume_scene(dp)[0]
     return _case(name, {"dp": repr(dp), "until": "0.1"})
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import json
 import warnings
 from pathlib import Path
 from typing import Any
@@ -163,6 +164,30 @@ def test_set_changes_one_parameter_of_a_case() -> None:
         cli.builder_from_args("dambreak2d", ["viscosity.nu=2e-6"])
     with pytest.raises(OverrideError, match=r"^integrator\.euler_every: expected an integer"):
         cli.builder_from_args("dambreak2d", ["integrator=verlet", "integrator.euler_every=x"])
+
+
+def test_delta_plus_shifting_is_a_model_of_the_shifting_option() -> None:
+    """``shifting.model``: the core's law of that name, its own checks, reached by ``--set``,
+    a scene-file table and the builders; left out, the core's (Lind)."""
+    assert nm.Shifting().to_core() == {}
+    assert nm.core_default("shifting.model") == "lind"
+    dp = nm.Shifting(model="delta_plus", coefficient=4.0)
+    assert dp.to_core() == {"model": "delta_plus", "coefficient": 4.0}
+    sim = ws.Tank(shifting=dp, until=0.01).build()
+    assert sim.params()["shifting_model"] == "delta_plus"
+    assert sim.scene["shifting"]["model"] == "delta_plus"
+    assert ws.Tank(until=0.01).build().params()["shifting_model"] is None
+    b = cli.builder_from_args("dambreak2d", ["shifting.model=delta_plus"])
+    assert b.shifting == nm.Shifting(model="delta_plus")
+    table = sf.loads('type = "tank"\nshifting = { model = "delta_plus" }\n', source="f.toml")
+    assert table.builder.shifting == nm.Shifting(model="delta_plus")
+    with pytest.raises(ws.SceneError, match=r"^shifting\.model: unknown value 'lnd'.*did you"):
+        nm.Shifting(model="lnd")
+    with pytest.raises(ws.SceneError, match=r"^shifting\.surface_threshold: belongs to"):
+        nm.Shifting(model="delta_plus", surface_threshold=1.5)
+    with pytest.raises(ws.SceneError, match=r"^shifting\.surface_threshold: belongs to"):
+        _core.Simulation(json.dumps(ws.Tank(until=0.01).to_scene() | {
+            "shifting": {"model": "delta_plus", "surface_threshold": 1.5}}))
 
 
 def test_scene_files_take_option_tables_and_set_their_parameters() -> None:

@@ -70,6 +70,7 @@ def test_shifting_reaches_the_core_and_bad_values_are_named() -> None:
     assert Tank(dim=3, shifting=shifting).to_scene()["shifting"] == {
         "coefficient": 1.0, "surface_threshold": 2.5}
     assert Tank(shifting={}).resolved_scene()["shifting"] == {
+        "model": nm.core_default("shifting.model"),
         "coefficient": nm.core_default("shifting.coefficient"), "surface_threshold": None}
     sim = watersim.Simulation(Tank(dp=0.05, shifting=2.0).to_scene())
     assert sim.params()["shifting"] == 2.0

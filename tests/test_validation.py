@@ -523,3 +523,32 @@ def test_stansby2d_case_plumbing() -> None:
     assert stansby_metrics(result)[1]["target_first_harmonic"] == pytest.approx(0.0525)
     empty_errors, _ = stansby_metrics({"gauges": []})
     assert set(empty_errors) == set(errors) and all(v is None for v in empty_errors.values())
+
+
+def test_long_flume_scene_and_its_settings() -> None:
+    """flume2d-long: gauges every wavelength to 10 L, the damping zone past them, the record
+    long enough for the statistics at 10 L; ``--set`` reaches its numerics and nothing else."""
+    from watersim import numerics as nm
+    from watersim.validation.longflume import long_flume_scene
+
+    case = CASES["flume2d-long"]
+    scene, _ = long_flume_scene(case.dp(5.0))
+    wl = scene.wavelength
+    assert wl is not None and scene.period is not None
+    xs = [g.x for g in scene.gauges]
+    assert xs == pytest.approx([n * wl for n in range(1, 11)], abs=1e-3)
+    assert scene.flume.length == pytest.approx(12.0 * wl, abs=1e-3)
+    start = scene.law.ramp_duration + scene.arrival_time(10 * wl) + scene.period
+    assert scene.until >= start + 3.0 * scene.period  # the analysis' three periods at 10 L
+    assert scene.shifting is None
+    shifted, _ = long_flume_scene(case.dp(5.0), {"shifting.coefficient": "4"})
+    assert shifted.shifting == nm.Shifting(coefficient=4.0)
+    from watersim.validation.sweep import check_settings
+
+    with pytest.raises(ValidateError, match="--set: key 'wave.height'"):
+        check_settings([("flume2d-long", 5.0)], ["wave.height=0.2"])
+    with pytest.raises(ValidateError, match="--set: tank2d takes no settings"):
+        check_settings([("tank2d", 10.0)], ["shifting.model=delta_plus"])
+    with pytest.raises(ValidateError, match="viscosity.alpha"):
+        check_settings([("flume2d-long", 5.0)], ["viscosity.alpha=-1"])
+    assert main(["validate", "tank2d", "--set", "alpha=0.1"]) == 2

@@ -288,21 +288,50 @@ class Verlet(Option):
 
 @dataclass(frozen=True, kw_only=True)
 class Shifting(Option):
-    """Fickian particle shifting (Lind et al. 2012 with Skillen et al. 2013's
-    ``D = A h |u| dt``; ``Shifting`` in ``crates/sph-core/src/scene/numerics.rs``).
+    """Particle shifting (``Shifting`` in ``crates/sph-core/src/scene/numerics.rs``): Fickian
+    shifting (``model="lind"``: Lind et al. 2012 with Skillen et al. 2013's ``D = A h |u| dt``,
+    a free-surface ramp on the particle divergence) or the delta-plus-SPH shifting
+    (``model="delta_plus"``: Sun et al. 2017, ``dr = -A h U_max dt sum [1 + R (W/W(dp))^4]
+    grad W V``, no shift on the free surface found from the renormalisation matrix, only
+    along the surface next to it).
 
     Attributes:
-        coefficient: ``A`` [-] (1-6 the proposed range).
-        surface_threshold: particle divergence at and below which a particle counts as on the
-            free surface and is not shifted [-], in (0, dim); ``None``: the core's, by dimension
-            (DualSPHysics' thresholds).
+        model: ``"lind"`` or ``"delta_plus"``.
+        coefficient: ``A`` [-] (``lind``: 1-6 the proposed range; ``delta_plus``: Sun et al.'s
+            ``CFL Ma (2h)^2`` is ``A = 4``).
+        surface_threshold: ``lind`` only: particle divergence at and below which a particle
+            counts as on the free surface and is not shifted [-], in (0, dim); ``None``: the
+            core's, by dimension (DualSPHysics' thresholds).
     """
 
     FIELD: ClassVar[str] = "shifting"
     POSITIVE: ClassVar[tuple[str, ...]] = ("coefficient", "surface_threshold")
+    MODELS: ClassVar[tuple[str, ...]] = ("lind", "delta_plus")
 
+    model: str | None = None
     coefficient: float | None = None
     surface_threshold: float | None = None
+
+    def check(self) -> None:
+        if self.model is not None and self.model not in self.MODELS:
+            hint = did_you_mean(self.model, self.MODELS) if isinstance(self.model, str) else ""
+            raise SceneError(f"shifting.model: unknown value {self.model!r}{hint}; allowed: "
+                             f"{', '.join(repr(m) for m in self.MODELS)}")
+        if self.model == "delta_plus" and self.surface_threshold is not None:
+            raise SceneError("shifting.surface_threshold: belongs to model 'lind'; "
+                             "'delta_plus' finds the free surface from the renormalisation "
+                             "matrix")
+        for name in ("coefficient", "surface_threshold"):
+            value = getattr(self, name)
+            if value is not None:
+                _positive(f"shifting.{name}", value)
+
+    def to_core(self) -> dict[str, Any]:
+        out: dict[str, Any] = {} if self.model is None else {"model": self.model}
+        for name in ("coefficient", "surface_threshold"):
+            if (value := getattr(self, name)) is not None:
+                out[name] = float(value)
+        return out
 
     def check_dim(self, dim: int) -> None:
         """The threshold against the bulk's particle divergence ``dim``."""

@@ -645,7 +645,9 @@ def _core_default_text(cls: type, name: str) -> str | None:
         return None
     if isinstance(value, dict):  # an option: its model, whose parameters are listed below
         tag = value.get("model", value.get("scheme"))
-        return f'the core\'s: `"{tag}"`' if tag else None
+        # an option without tagged classes (shifting) is off by default: its model is a parameter
+        tagged = name not in nm.OPTION_CLASSES or bool(nm.OPTION_CLASSES[name][0].TAG)
+        return f'the core\'s: `"{tag}"`' if tag and tagged else None
     return f"the core's: {_toml_literal(value)}"
 
 

@@ -178,6 +178,11 @@ pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
     fn sym_trace_and_norm2(s: &Self::Sym) -> (Real, Real);
     /// `s` scaled by `a`, plus `b` on the diagonal.
     fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym;
+    /// Smallest eigenvalue of `s`.
+    fn sym_min_eigenvalue(s: &Self::Sym) -> Real;
+    /// `adj(s) . v`: `det(s) s^-1 . v` without the division (the direction of `s^-1 . v`
+    /// when `s` is positive definite).
+    fn sym_adjugate_dot(s: &Self::Sym, v: Self::V) -> Self::V;
 
     /// The nearest point of the surface of the axis-aligned box `[min, max]` to `p`, by parry's
     /// point projection.
@@ -285,6 +290,15 @@ impl Dim for Dim2 {
     fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym {
         [a * s[0] + b, a * s[1] + b, a * s[2]]
     }
+    #[inline(always)]
+    fn sym_min_eigenvalue(s: &Self::Sym) -> Real {
+        let half = 0.5 * (s[0] - s[1]);
+        0.5 * (s[0] + s[1]) - (half * half + s[2] * s[2]).sqrt()
+    }
+    #[inline(always)]
+    fn sym_adjugate_dot(s: &Self::Sym, v: DVec2) -> DVec2 {
+        DVec2::new(s[1] * v.x - s[2] * v.y, s[0] * v.y - s[2] * v.x)
+    }
     shape_queries!(parry2d_f64);
 }
 
@@ -337,12 +351,52 @@ impl Dim for Dim3 {
     fn sym_scale_add_diag(s: &Self::Sym, a: Real, b: Real) -> Self::Sym {
         [a * s[0] + b, a * s[1] + b, a * s[2] + b, a * s[3], a * s[4], a * s[5]]
     }
+    /// The trigonometric solution of the characteristic cubic (Smith 1961, Commun. ACM 4(4)).
+    fn sym_min_eigenvalue(s: &Self::Sym) -> Real {
+        let [xx, yy, zz, xy, xz, yz] = *s;
+        let off = xy * xy + xz * xz + yz * yz;
+        let q = (xx + yy + zz) / 3.0;
+        let (a, b, c) = (xx - q, yy - q, zz - q);
+        let p = ((a * a + b * b + c * c + 2.0 * off) / 6.0).sqrt();
+        if p == 0.0 {
+            return q;
+        }
+        // det((s - q I) / p) / 2, clamped to [-1, 1] against rounding
+        let det = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz);
+        let r = (det / (2.0 * p * p * p)).clamp(-1.0, 1.0);
+        let phi = r.acos() / 3.0;
+        q + 2.0 * p * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos()
+    }
+    fn sym_adjugate_dot(s: &Self::Sym, v: DVec3) -> DVec3 {
+        let [xx, yy, zz, xy, xz, yz] = *s;
+        let (a00, a11, a22) = (yy * zz - yz * yz, xx * zz - xz * xz, xx * yy - xy * xy);
+        let (a01, a02, a12) = (xz * yz - xy * zz, xy * yz - xz * yy, xy * xz - xx * yz);
+        DVec3::new(a00 * v.x + a01 * v.y + a02 * v.z, a01 * v.x + a11 * v.y + a12 * v.z, a02 * v.x + a12 * v.y + a22 * v.z)
+    }
     shape_queries!(parry3d_f64);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn smallest_eigenvalue_and_adjugate() {
+        // 2D: [[3, 1], [1, 2]] has eigenvalues (5 -+ sqrt 5) / 2
+        let s2 = [3.0, 2.0, 1.0];
+        assert!((Dim2::sym_min_eigenvalue(&s2) - (5.0 - 5f64.sqrt()) / 2.0).abs() < 1e-14);
+        let v2 = DVec2::new(0.3, -1.2);
+        let back = Dim2::sym_dot(&s2, Dim2::sym_adjugate_dot(&s2, v2)) / 5.0;
+        assert!((back - v2).length() < 1e-14, "{back}");
+        // 3D: diag(2, 3, 4) rotated about z by 30 degrees keeps its eigenvalues 2, 3, 4
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let s3 = [2.0 * c * c + 3.0 * s * s, 2.0 * s * s + 3.0 * c * c, 4.0, (2.0 - 3.0) * c * s, 0.0, 0.0];
+        assert!((Dim3::sym_min_eigenvalue(&s3) - 2.0).abs() < 1e-12);
+        assert!((Dim3::sym_min_eigenvalue(&[1.5, 1.5, 1.5, 0.0, 0.0, 0.0]) - 1.5).abs() < 1e-15);
+        let v3 = DVec3::new(0.3, -1.2, 0.7);
+        let back = Dim3::sym_dot(&s3, Dim3::sym_adjugate_dot(&s3, v3)) / 24.0;
+        assert!((back - v3).length() < 1e-12, "{back}");
+    }
 
     #[test]
     fn box_distance_signs() {

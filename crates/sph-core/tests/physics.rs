@@ -90,7 +90,13 @@ fn run_tank(threads: usize, extra: &str) -> (Vec<f64>, Vec<u32>) {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    for extra in ["", r#", "shifting": {}"#, r#", "boundary": {"model": "adami"}"#, r#", "force_precision": "f32""#] {
+    for extra in [
+        "",
+        r#", "shifting": {}"#,
+        r#", "shifting": {"model": "delta_plus"}"#,
+        r#", "boundary": {"model": "adami"}"#,
+        r#", "force_precision": "f32""#,
+    ] {
         let (p1, i1) = run_tank(1, extra);
         let (p2, i2) = run_tank(2, extra);
         let (p3, i3) = run_tank(3, extra);
@@ -175,6 +181,9 @@ fn shifting_evens_out_a_disordered_particle_set() {
     let (same_start, shifted) = run(r#", "shifting": {"coefficient": 2}"#);
     assert_eq!(before.to_bits(), same_start.to_bits());
     assert!(shifted < 0.8 * plain, "spread: {before:.5} at the start, {plain:.5} without shifting, {shifted:.5} with");
+    // the delta-plus-SPH shifting (Sun et al. 2017) evens it out as well
+    let (_, delta_plus) = run(r#", "shifting": {"model": "delta_plus", "coefficient": 4}"#);
+    assert!(delta_plus < 0.8 * plain, "spread: {plain:.5} without shifting, {delta_plus:.5} with delta-plus");
 }
 
 #[test]

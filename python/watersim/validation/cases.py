@@ -56,6 +56,7 @@ from .absorption import (
     _run_absorption,
 )
 from .buchner import BUCHNER_H, WALL_MODELS, plot_buchner, run_buchner
+from .longflume import LONG_FLUME_WAVE, long_flume_scene, run_long_flume
 from .running import _Clock, _with_until, advance, make_record
 from .stansby import STANSBY_HEIGHT, stansby_metrics, stansby_until
 
@@ -109,6 +110,15 @@ class Case:
     depth: float | None = None
     modules: tuple[str, ...] = ()
     figure: Callable[[Sequence[Mapping[str, Any]], Path], None] | None = None
+    scene: Callable[[float, Mapping[str, str]], tuple[FlumeScene, list[str]]] | None = None
+    """For a case that takes numerical ``--set`` items (``watersim validate --set``):
+    ``scene(dp, settings)`` builds its scene (and checks the items); its runner then takes the
+    items as a fifth argument. ``None``: the case takes none."""
+
+    @property
+    def settable(self) -> bool:
+        """Whether the case takes numerical ``--set`` items."""
+        return self.scene is not None
 
     def dp(self, resolution: float) -> float:
         """Particle spacing [m] of a resolution: ``length / resolution``, for a wave flume
@@ -125,20 +135,28 @@ class Case:
         return run_case(self.name, resolution, quick, progress)
 
 
-def run_case(name: str, resolution: float, quick: bool = False, progress: bool = False
-             ) -> dict[str, Any]:
+def run_case(name: str, resolution: float, quick: bool = False, progress: bool = False,
+             settings: Mapping[str, str] | None = None) -> dict[str, Any]:
     """Run case ``name`` at ``resolution``: the run record (a module-level function, so that it
-    pickles for process pools and Dask workers).
+    pickles for process pools and Dask workers). ``settings``: numerical ``--set`` items
+    (key -> text) for a case that takes them (:attr:`Case.settable`).
 
     Raises:
-        ValueError: unknown case or a resolution that is not a positive number.
+        ValueError: unknown case, a resolution that is not a positive number, or settings for
+            a case that takes none.
     """
     if name not in CASES:
         raise ValueError(f"case: unknown validation case {name!r}; known: {', '.join(CASES)}")
     case = CASES[name]
     _positive("resolution", resolution)
+    if settings and not case.settable:
+        raise ValueError(f"--set: {name} takes no settings (cases that do: "
+                         f"{', '.join(c.name for c in CASES.values() if c.settable)})")
     clock = _Clock()
     try:
+        if case.settable:
+            return case.runner(case, float(resolution), quick, progress,  # type: ignore[call-arg]
+                               dict(settings or {}))
         return case.runner(case, float(resolution), quick, progress)
     except (SceneError, ValueError, RuntimeError, FloatingPointError) as exc:
         # a case that cannot be built or measured at this resolution is a result, not a crash
@@ -909,6 +927,24 @@ CASES: dict[str, Case] = {
              report_details=("H_1L", "H_2L", "H_3L", "wavelength_measured",
                              "wavelength_linear", "wavelength_stokes3"),
              depth=0.3),
+        Case("flume2d-long", "the flume2d wave (H = 0.1 m, T = 1.2 s, d = 0.3 m) over ten "
+             "wavelengths of flat floor",
+             "target height; stream-function (nonlinear) wavelength; still-water level",
+             "wave height / dp", LONG_FLUME_WAVE["height"], (5.0, 10.0), (2.5,), "H_10L", 0.05,
+             "wave height at 10 wavelengths within 5 % of the target", run_long_flume,
+             "Issue 30's measure of numerical dissipation (`watersim.validation.longflume`): "
+             "gauges at 1 to 10 L, a 1.5 L damping zone past 10.5 L, the numerics of flume2d "
+             "unless `--set` changes them (`details.settings`, `details.numerics`). "
+             "`H_10L`: mean zero-crossing height at 10 L against the target H. "
+             "`height_loss_per_L`: fraction of the height lost per wavelength, fitted over the "
+             "ten gauges (the issue's targets: at most 0.5 % at H/dp 10, 1 % at H/dp 5). "
+             "`wavelength_nonlinear`: wavelength from the first-harmonic phases of the ten "
+             "gauges against the stream-function wave of the same H and T (within 1 %). "
+             "`mean_level`: the largest mean level of a gauge's steady record over H (within "
+             "1 %).",
+             report_details=("H_1L", "H_5L", "H_10L", "height_loss_per_wavelength",
+                             "wavelength_measured", "wavelength_nonlinear"),
+             depth=LONG_FLUME_WAVE["depth"], scene=long_flume_scene),
         Case("secondorder2d", "first- against second-order piston, d = 0.2 m, T = 1.4 s, "
              "H = 0.045 m (kd = 0.69)",
              "Stokes second-order bound harmonic (constant along the flume)", "wave height / dp",

@@ -5,7 +5,7 @@ keeps what it has) and write the report.
 ::
 
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
-                      [--jobs N] [--scheduler ADDRESS] [--from-json FILE]
+                      [--jobs N] [--scheduler ADDRESS] [--from-json FILE] [--set KEY=VALUE ...]
 
 Runs go to a :class:`concurrent.futures.ProcessPoolExecutor` with ``--jobs`` workers (1: in this
 process, with a tqdm bar per run), or, with ``--scheduler``, to the Dask distributed scheduler
@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from .._jsonio import write_json_atomic
+from ..overrides import parse as parse_items
 from .cases import CASES, run_case
 
 __all__ = ["add_parser", "cmd_validate", "machine_info", "parse_resolutions", "plan",
@@ -135,9 +136,10 @@ def _stamp(record: dict[str, Any]) -> dict[str, Any]:
     return record
 
 
-def _remote_run(name: str, resolution: float, quick: bool) -> dict[str, Any]:
+def _remote_run(name: str, resolution: float, quick: bool,
+                settings: dict[str, str] | None = None) -> dict[str, Any]:
     """A run in a worker process: the record with the worker's machine and finish time."""
-    record = run_case(name, resolution, quick, False)
+    record = run_case(name, resolution, quick, False, settings)
     record["machine"] = machine_info()
     return _stamp(record)
 
@@ -203,6 +205,7 @@ def run_sweep(
     json_path: str | Path | None = None,
     progress: bool = False,
     on_record: Callable[[dict[str, Any]], None] | None = None,
+    settings: dict[str, str] | None = None,
 ) -> list[dict[str, Any]]:
     """Run every (case, resolution) task and return the records in task order.
 
@@ -214,6 +217,8 @@ def run_sweep(
         json_path: rewrite this JSON list after every finished run.
         progress: tqdm bars (per run with one job here, else over the runs).
         on_record: called with each record as it arrives.
+        settings: numerical ``--set`` items (key -> text) for every case (each must take them:
+            :func:`check_settings`).
     """
     if jobs < 1:
         raise ValidateError(f"--jobs: must be at least 1, got {jobs}")
@@ -230,7 +235,7 @@ def run_sweep(
     if scheduler is None and jobs == 1:
         machine = machine_info()
         for i, (name, res) in enumerate(tasks):
-            record = run_case(name, res, quick, progress)
+            record = run_case(name, res, quick, progress, settings)
             record["machine"] = machine
             done(i, _stamp(record))
         return [r for r in slots if r is not None]
@@ -251,7 +256,7 @@ def run_sweep(
             address = parse_scheduler(scheduler)
             check_scheduler_answers(address)
             with Client(address, timeout=SCHEDULER_CONNECT_TIMEOUT_S) as client:
-                futures = {client.submit(_remote_run, name, res, quick, pure=False): i
+                futures = {client.submit(_remote_run, name, res, quick, settings, pure=False): i
                            for i, (name, res) in enumerate(tasks)}
                 for fut in dask_completed(futures):
                     done(futures[fut], fut.result())
@@ -262,7 +267,7 @@ def run_sweep(
             # threads and blocks on the first parallel loop of the core
             context = multiprocessing.get_context("spawn")
             with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-                pending = {pool.submit(_remote_run, name, res, quick): i
+                pending = {pool.submit(_remote_run, name, res, quick, settings): i
                            for i, (name, res) in enumerate(tasks)}
                 for fut in as_completed(pending):
                     done(pending[fut], fut.result())
@@ -272,6 +277,32 @@ def run_sweep(
         if bar is not None:
             bar.close()
     return [r for r in slots if r is not None]
+
+
+def check_settings(tasks: Sequence[tuple[str, float]], items: Sequence[str] | None
+                   ) -> dict[str, str] | None:
+    """The ``--set`` items as key -> text, refused before anything runs when a case of the sweep
+    takes no settings (:attr:`Case.settable`) or a key or value is not one its scene takes
+    (each case's scene is built once, at its first resolution)."""
+    if not items:
+        return None
+    settings = {o.key: o.text for o in parse_items(items)}
+    for name in dict.fromkeys(name for name, _ in tasks):
+        if not CASES[name].settable:
+            takers = ", ".join(c.name for c in CASES.values() if c.settable)
+            raise ValidateError(f"--set: {name} takes no settings (cases that do: {takers})")
+    from .._core import SceneError
+    from ..flume_cases import FlumeCaseError
+
+    for name in dict.fromkeys(name for name, _ in tasks):
+        res = next(r for n, r in tasks if n == name)
+        try:
+            make = CASES[name].scene
+            assert make is not None
+            make(CASES[name].dp(res), settings)
+        except (FlumeCaseError, SceneError) as exc:
+            raise ValidateError(str(exc)) from None
+    return settings
 
 
 def _header(args: argparse.Namespace, records: Sequence[dict[str, Any]]) -> list[str]:
@@ -315,7 +346,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
         used = [flag for flag, given in (("--resolutions", args.resolutions is not None),
                                          ("--quick", args.quick), ("--jobs", args.jobs != 1),
                                          ("--scheduler", args.scheduler is not None),
-                                         ("--json", args.json is not None)) if given]
+                                         ("--json", args.json is not None),
+                                         ("--set", bool(args.set))) if given]
         if used:
             raise ValidateError(f"{used[0]}: not used with --from-json (it runs nothing)")
         if args.report is None:
@@ -341,6 +373,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if args.scheduler is not None:
             parse_scheduler(args.scheduler)
         check_modules(tasks, args.scheduler)
+        settings = check_settings(tasks, args.set)
         if args.json is not None:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         progress = sys.stderr.isatty()
@@ -354,7 +387,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
                 print(f"  {r.get('message')}", flush=True)
 
         records = run_sweep(tasks, args.quick, args.jobs, args.scheduler, args.json, progress,
-                            say)
+                            say, settings)
     if args.report is not None:
         readme = write_report(records, args.report, header=_header(args, records))
         print(f"wrote {readme}")
@@ -390,6 +423,9 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
                    "unpickled here")
     p.add_argument("--from-json", metavar="FILE", help="report on the runs in FILE instead of "
                    "running")
+    p.add_argument("--set", action="append", metavar="KEY=VALUE", help="a numerical setting "
+                   "of the cases that take them (flume2d-long), e.g. --set shifting.model="
+                   "delta_plus (repeatable; recorded in each run's details.settings)")
     p.add_argument("--note", action="append", metavar="TEXT", help="a line for the report's "
                    "header, e.g. what else ran on the machine (repeatable)")
     p.set_defaults(func=cmd_validate)

@@ -3,6 +3,7 @@
 //! loop, so a term that is off costs nothing in the hot loop.
 
 pub mod batched;
+pub mod delta_plus;
 pub mod eos;
 pub mod forces;
 

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Slip, Viscosity};
+use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, ShiftingModel, Slip, Viscosity};
 use crate::kernel::KernelKind;
 use crate::math::Real;
 
@@ -86,6 +86,8 @@ pub struct BoundaryDefaults {
 /// Particle shifting's parameters (shifting is off by default).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ShiftingDefaults {
+    /// The law (`lind` or `delta_plus`).
+    pub model: ShiftingModel,
     /// `A` of `D = A h |u| dt`, DualSPHysics' value (Skillen et al. 2013 propose 1-6).
     pub coefficient: Real,
 }
@@ -112,7 +114,7 @@ impl Default for Defaults {
             integrator: IntegratorDefaults { scheme: "symplectic", euler_every: 40 },
             boundary: BoundaryDefaults { model: "dbc", slip: Slip::WallVelocity },
             force_precision: ForcePrecision::F64,
-            shifting: ShiftingDefaults { coefficient: 2.0 },
+            shifting: ShiftingDefaults { model: ShiftingModel::Lind, coefficient: 2.0 },
             damping: DampingDefaults { strength: 10.0 },
             density_band: 0.5,
             lost_fraction_limit: 0.01,
@@ -158,6 +160,7 @@ pub(crate) mod serde_default {
         euler_every: u32 = integrator.euler_every;
         mdbc_slip: Slip = boundary.slip;
         force_precision: ForcePrecision = force_precision;
+        shifting_model: ShiftingModel = shifting.model;
         shifting_coefficient: Real = shifting.coefficient;
         damping_strength: Real = damping.strength;
         density_band: Real = density_band;

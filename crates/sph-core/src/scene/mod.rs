@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use self::defaults::serde_default as default;
 pub use self::defaults::{BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, ViscosityDefaults};
 pub use self::geometry::{BoxSpec, Damping, Obstacle};
-pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, Slip, Viscosity};
+pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, ShiftingModel, Slip, Viscosity};
 use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
@@ -238,6 +238,8 @@ mod tests {
             (dambreak_json(r#", "shifting": {"coefficient": 0}"#), "shifting.coefficient"),
             (dambreak_json(r#", "shifting": {"surface_threshold": 2.0}"#), "shifting.surface_threshold"),
             (dambreak_json(r#", "shifting": {"coeff": 2}"#), "shifting"),
+            (dambreak_json(r#", "shifting": {"model": "delta_plus", "surface_threshold": 1.5}"#), "shifting.surface_threshold"),
+            (dambreak_json(r#", "shifting": {"model": "fick"}"#), "shifting"),
             (dambreak_json(r#", "boundary": {"model": "mirror"}"#), "boundary"),
             (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
             // the wall shell of a huge support or of too many layers: not dp's fault

@@ -119,26 +119,60 @@ pub enum ForcePrecision {
     F32,
 }
 
-/// Fickian particle shifting (Lind et al. 2012, J. Comput. Phys. 231, Eqs. 22-23): after each
-/// step a fluid particle moves by `dr = -a_fs D grad C`, with the concentration gradient
-/// `grad C = sum_b V_b grad W_ab` over fluid and wall neighbours and Skillen et al. (2013)'s
-/// coefficient `D = A h |u| dt` (their Eq. 26), so still water is never shifted. Free-surface
-/// particles lack half their neighbours and `grad C` would push them out of the water: the
-/// particle divergence `div r = -sum_b V_b r_ab . grad W_ab` (Lee et al. 2008; `dim` in the
-/// bulk) detects them, and `a_fs` ramps from 0 at `div r = surface_threshold` to 1 at
-/// `div r = dim` (DualSPHysics' free-surface correction, Mokos 2013, with its thresholds 1.5
-/// in 2D and 2.75 in 3D). The shift only moves particles; it does not correct the velocity or
-/// density (as DualSPHysics' Lind shifting).
+/// Particle shifting: after each step a fluid particle moves along minus a concentration
+/// gradient, which evens out the particle distribution (one extra neighbour pass a step).
+///
+/// `model = "lind"` (the default): Fickian shifting (Lind et al. 2012, J. Comput. Phys. 231,
+/// Eqs. 22-23), `dr = -a_fs D grad C`, with the concentration gradient `grad C = sum_b V_b
+/// grad W_ab` over fluid and wall neighbours and Skillen et al. (2013)'s coefficient
+/// `D = A h |u| dt` (their Eq. 26), so still water is never shifted. Free-surface particles lack
+/// half their neighbours and `grad C` would push them out of the water: the particle divergence
+/// `div r = -sum_b V_b r_ab . grad W_ab` (Lee et al. 2008; `dim` in the bulk) detects them, and
+/// `a_fs` ramps from 0 at `div r = surface_threshold` to 1 at `div r = dim` (DualSPHysics'
+/// free-surface correction, Mokos 2013, with its thresholds 1.5 in 2D and 2.75 in 3D).
+///
+/// `model = "delta_plus"`: the delta-plus-SPH shifting (Sun, Colagrossi, Marrone & Zhang 2017,
+/// Comput. Methods Appl. Mech. Engrg. 315, section 2.3; `physics::delta_plus`):
+/// `dr = -A h U_max dt sum_b [1 + R (W_ab / W(dp))^n] grad W_ab V_b` with R = 0.2, n = 4 (their
+/// `CFL Ma (2h)^2` is `4 h U_max dt` for `dt = CFL h / c0`, `Ma = U_max / c0`: A = 4), `U_max`
+/// the largest fluid speed of the step; the free surface is found from the smallest eigenvalue
+/// `lambda` of `sum_b (r_b - r_a) (x) grad W_ab V_b` (Marrone et al. 2010; 1 in the bulk,
+/// about 0.5 on a flat surface): not shifted below 0.4, shifted along the surface only
+/// (`(I - n n) dr`, `n` the renormalised normal `-L grad C / |L grad C|`) up to 0.75, in full
+/// above. `surface_threshold` belongs to `lind` and is refused here.
+///
+/// Either shift only moves particles; it does not correct the velocity or density (as
+/// DualSPHysics' Lind shifting and the 2017 delta-plus-SPH).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Shifting {
-    /// `A` of `D = A h |u| dt`.
+    /// Which law: `lind` or `delta_plus`.
+    #[serde(default = "default::shifting_model")]
+    pub model: ShiftingModel,
+    /// `A` of `D = A h |u| dt` (`lind`) or of `A h U_max dt` (`delta_plus`).
     #[serde(default = "default::shifting_coefficient")]
     pub coefficient: Real,
-    /// Particle divergence at and below which a particle is on the free surface and not
-    /// shifted; default 1.5 in 2D, 2.75 in 3D. Must lie between 0 and `dim`.
+    /// `lind` only: particle divergence at and below which a particle is on the free surface
+    /// and not shifted; default 1.5 in 2D, 2.75 in 3D. Must lie between 0 and `dim`.
     #[serde(default)]
     pub surface_threshold: Option<Real>,
+}
+
+/// The law of [`Shifting`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShiftingModel {
+    Lind,
+    DeltaPlus,
+}
+
+impl ShiftingModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            ShiftingModel::Lind => "lind",
+            ShiftingModel::DeltaPlus => "delta_plus",
+        }
+    }
 }
 
 impl Shifting {

@@ -2,7 +2,7 @@
 //! key's dotted path (`viscosity.alpha`, `fluid[0]`) and the reason.
 
 use super::geometry::BoxSpec;
-use super::numerics::{Diffusion, ForcePrecision, Integrator, Viscosity};
+use super::numerics::{Diffusion, ForcePrecision, Integrator, ShiftingModel, Viscosity};
 use super::{Obstacle, Scene};
 use crate::error::{Error, Result};
 use crate::math::Real;
@@ -202,6 +202,12 @@ impl Scene {
         }
         if let Some(sh) = self.shifting {
             check_positive("shifting.coefficient", sh.coefficient)?;
+            if sh.model == ShiftingModel::DeltaPlus && sh.surface_threshold.is_some() {
+                return Err(Error::invalid(
+                    "shifting.surface_threshold",
+                    "belongs to model lind; delta_plus finds the free surface from the renormalisation matrix's smallest eigenvalue",
+                ));
+            }
             let t = sh.threshold(dim);
             if !t.is_finite() || t <= 0.0 || t >= dim as Real {
                 return Err(Error::invalid(

@@ -17,7 +17,7 @@ use crate::error::InstabilityKind;
 use crate::kernel::Kernel;
 use crate::math::{Dim, Real, Vector};
 use crate::particles::{KIND_EXCLUDED, KIND_FLUID};
-use crate::scene::Damping;
+use crate::scene::{Damping, ShiftingModel};
 use crate::threads::{for_each_chunk, Chunks};
 
 /// How a particle's density and motion advance in a sweep.
@@ -170,9 +170,15 @@ fn advance_motion<V: Vector>(rule: Rule, dt: Real, pos: &mut [V], vel: &mut [V],
     }
 }
 
-/// Moves each fluid particle by its shift `-a_fs A h |u| dt grad C` (see
-/// [`crate::scene::Shifting`]), `u` its velocity at the end of the step.
+/// Moves each fluid particle by its shift (see [`crate::scene::Shifting`]): `lind`,
+/// `-a_fs A h |u| dt grad C` with `u` its velocity at the end of the step; `delta_plus`,
+/// `-A h U_max dt s` with `s` its shift direction (`grad`).
 fn shift_positions<D: Dim>(s: &ShiftState<D>, dt: Real, pos: &mut [D::V], vel: &[D::V], grad: &[D::V], div: &[Real]) {
+    if s.model == ShiftingModel::DeltaPlus {
+        let scale = -s.a_h * s.u_max * dt;
+        pos.iter_mut().zip(grad).for_each(|(x, &g)| *x += g * scale);
+        return;
+    }
     let span = D::DIM as Real - s.threshold;
     for (((x, v), &g), &div) in pos.iter_mut().zip(vel).zip(grad).zip(div) {
         let surface = ((div - s.threshold) / span).clamp(0.0, 1.0);

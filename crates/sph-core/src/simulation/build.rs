@@ -82,6 +82,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         };
         let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
         let shift = scene.shifting.map(|sh| ShiftState {
+            model: sh.model,
+            u_max: 0.0,
             a_h: sh.coefficient * c.h,
             threshold: sh.threshold(D::DIM),
             grad: vec![D::V::ZERO; n_fluid],

@@ -35,7 +35,7 @@ use crate::threads::with_workers_polling;
 use crate::physics::eos::pressure;
 use crate::physics::forces::Fields;
 use crate::physics::Constants;
-use crate::scene::{Integrator, Scene};
+use crate::scene::{Integrator, Scene, ShiftingModel};
 
 /// Cells of half the kernel support: fewer candidate pairs than `2h` cells (see `neighbours.rs`).
 const NEIGHBOUR_REACH: usize = 2;
@@ -63,6 +63,8 @@ pub struct Params {
     pub boundary: &'static str,
     /// Particle shifting's coefficient `A` (none without shifting).
     pub shifting: Option<Real>,
+    /// Particle shifting's law, "lind" or "delta_plus" (none without shifting).
+    pub shifting_model: Option<&'static str>,
     /// Arithmetic of the force loop's pair terms: "f64" or "f32".
     pub force_precision: &'static str,
     /// Smallest time step allowed before the run is declared unstable [s].
@@ -164,12 +166,18 @@ impl<D: Dim> History<D> {
 /// after the step's last force evaluation (no cell sort comes between them and their use).
 #[derive(Debug, Clone)]
 struct ShiftState<D: Dim> {
-    /// `A h` of Skillen et al.'s `D = A h |u| dt`.
+    model: ShiftingModel,
+    /// `A h` of Skillen et al.'s `D = A h |u| dt` (`lind`) or of `A h U_max dt` (`delta_plus`).
     a_h: Real,
-    /// Free-surface threshold of the particle divergence (the bulk's is `dim`).
+    /// `lind`: free-surface threshold of the particle divergence (the bulk's is `dim`).
     threshold: Real,
+    /// `lind`: the concentration gradient; `delta_plus`: the shift direction.
     grad: Vec<D::V>,
+    /// `lind`: the particle divergence; `delta_plus`: the renormalisation matrix's smallest
+    /// eigenvalue.
     div: Vec<Real>,
+    /// `delta_plus`: the largest fluid speed at the last shifting pass.
+    u_max: Real,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -494,6 +502,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             force_precision: if self.c.pair_f32 { "f32" } else { "f64" },
             boundary: self.walls.name(),
             shifting: s.shifting.map(|sh| sh.coefficient),
+            shifting_model: s.shifting.map(|sh| sh.model.name()),
             dt_floor: self.dt_floor,
         }
     }

@@ -14,7 +14,9 @@ use crate::motion::{Paddle, PaddlePose};
 use crate::neighbours::{GROUP_FLUID, GROUP_MOVING};
 use crate::phases::{self, Phase};
 use crate::physics::forces::{fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
+use crate::physics::delta_plus::delta_plus_fields;
 use crate::physics::VISC_LAMINAR_SPS;
+use crate::scene::ShiftingModel;
 
 impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
     /// Places the paddle particles where the motion law puts them at time `t`, with its velocity.
@@ -83,7 +85,13 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
     fn compute_shifting(&mut self) {
         let Some(shift) = &mut self.shift else { return };
         let fields = fields_of(&self.p, &[]);
-        shifting_fields(&self.c, &self.kernel, &self.grid, fields, &mut shift.grad, &mut shift.div);
+        let (c, kernel, grid) = (&self.c, &self.kernel, &self.grid);
+        match shift.model {
+            ShiftingModel::Lind => shifting_fields(c, kernel, grid, fields, &mut shift.grad, &mut shift.div),
+            ShiftingModel::DeltaPlus => {
+                shift.u_max = delta_plus_fields(c, kernel, grid, fields, &mut shift.grad, &mut shift.div);
+            }
+        }
     }
 
     /// Variable time step (Monaghan & Kos 1999; DESIGN.md section 2).
