@@ -154,7 +154,7 @@ def test_the_obstacle_index_counts_the_beach() -> None:
 
 @pytest.mark.parametrize(("kwargs", "field"), [
     ({"structures": [ws.BoxStructure("b", (0.6, 0.1), (0.9, 0.2))]}, r"structures\[0\]\.max"),
-    ({"structures": [ws.BoxStructure("b", (0.3, 0.1), (0.5, 0.9))]}, r"structures\[0\]\.max"),
+    ({"structures": [ws.BoxStructure("b", (0.3, -0.1), (0.5, 0.2))]}, r"structures\[0\]\.min"),
     ({"structures": [ws.BoxStructure("b", (0.01, 0.1), (0.2, 0.2))]}, r"structures\[0\]\.min"),
     ({"structures": [ws.BoxStructure("b", (0.3, 0.1), (0.5, 0.13))]},
      r"structures\[0\]\.max\[1\]"),
@@ -175,10 +175,10 @@ def test_bad_structures_are_refused_naming_the_field(kwargs: dict[str, object],
 
 
 @pytest.mark.parametrize(("make", "field"), [
-    (lambda: ws.BoxStructure("b", (0.3, 0.1), (0.2, 0.2)), "structure.max"),
-    (lambda: ws.BoxStructure("", (0.3, 0.1), (0.4, 0.2)), "structure.name"),
-    (lambda: ws.ProfileStructure("w", (0.5, 0.4), (0.0, 0.3)), "structure.x"),
-    (lambda: ws.ProfileStructure("w", (0.4, 0.5), (0.0, -0.3)), "structure.z"),
+    (lambda: ws.BoxStructure("b", (0.3, 0.1), (0.2, 0.2)), "body.max"),
+    (lambda: ws.BoxStructure("", (0.3, 0.1), (0.4, 0.2)), "body.name"),
+    (lambda: ws.ProfileStructure("w", (0.5, 0.4), (0.0, 0.3)), "body.x"),
+    (lambda: ws.ProfileStructure("w", (0.4, 0.5), (0.0, -0.3)), "body.z"),
     (lambda: ws.ForceGauge(structure="b", point=(0.4,)), "gauge.point"),
 ])
 def test_bad_models_name_the_field(make: object, field: str) -> None:

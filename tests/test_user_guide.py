@@ -86,3 +86,21 @@ def test_command_line_walk_through(tmp_path: Path) -> None:
     assert (tmp_path / "runs/beach-h5/gauges.csv").is_file()
     again = run_cli(*commands[0][1:], "--set", "until=0.3", cwd=tmp_path)
     assert again.returncode == 2 and "--overwrite" in again.stderr
+
+
+def test_the_general_scene_example_runs_and_its_scene_file_reads(tmp_path: Path,
+                                                                  monkeypatch: pytest.MonkeyPatch
+                                                                  ) -> None:
+    """Section 2's dam break against a box (at dp 0.08 m for 0.02 s) and its scene file."""
+    (python,) = _blocks("python scene")
+    (toml,) = _blocks("toml scene")
+    assert "dp=0.02, until=1.0" in python
+    monkeypatch.chdir(tmp_path)
+    space: dict[str, object] = {}
+    code = python.replace("dp=0.02, until=1.0", "dp=0.08, until=0.02")
+    exec(compile(code, "user-guide.md", "exec"), space)
+    assert space["force"].shape[1] == 3  # type: ignore[attr-defined]
+    assert (tmp_path / "gauges.csv").is_file()
+    scene = sf.loads(toml, source="scene.toml").builder
+    assert scene.to_scene()["obstacles"] == [
+        {"shape": "sphere", "centre": [0.4, 0.2], "radius": 0.1}]

@@ -4,7 +4,10 @@ Public names:
 
 - :class:`Simulation`: a running simulation (wrapper of the core's); :class:`Snapshot`, a
   consistent copy of its state that another thread may take while it steps.
-- :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
+- :class:`Scene`: the general scene (a tank, :class:`FluidBlock` / :class:`FillTo` water,
+  bodies of :mod:`watersim.bodies` (:class:`Box`, :class:`Sphere`, :class:`Cylinder`,
+  :class:`Capsule`, :class:`Polygon`, :class:`HalfSpace`, :class:`Mesh`) and gauges), and its
+  presets :class:`DamBreak`, :class:`Tank`: scene builders, checked field by field.
 - :class:`Flume` (with :class:`PlaneBeach`, :class:`ProfileBeach`, :class:`MeshBeach` (3D,
   from an STL file), :class:`DampingZone`): the wave
   flume; :meth:`Flume.simulation` takes a wave (:class:`RegularWave`, :class:`IrregularWave`,
@@ -29,17 +32,38 @@ from . import analysis, numerics, wave_theory
 from . import flume as _flume
 from ._core import InstabilityError, SceneError
 from ._version import __version__
+from .bodies import Box, Capsule, Cylinder, HalfSpace, Mesh, Polygon, Sphere
 from .checkpoint import load_checkpoint, save_checkpoint
 from .flume import *  # noqa: F403 (its __all__: the flume's models, gauges and analysis)
 from .measure import front_error, front_position, load_martin_moyce, water_column_height
 from .rundir import load
 from .scenefile import load as load_scene
-from .scenes import DamBreak, SceneBuilder, StiffFluidWarning, Tank
+from .scenes import (
+    DamBreak,
+    FillTo,
+    FluidBlock,
+    Scene,
+    SceneBuilder,
+    SceneSimulation,
+    StiffFluidWarning,
+    Tank,
+)
 from .simulation import Simulation, Snapshot
 
 __all__ = [
     *_flume.__all__,
+    "Box",
+    "Capsule",
+    "Cylinder",
     "DamBreak",
+    "FillTo",
+    "FluidBlock",
+    "HalfSpace",
+    "Mesh",
+    "Polygon",
+    "Scene",
+    "SceneSimulation",
+    "Sphere",
     "InstabilityError",
     "SceneBuilder",
     "StiffFluidWarning",

@@ -29,6 +29,7 @@ from .builtin_cases import SET_HELP, builder_from_args
 from .errors import CliError
 from .numerics import FORCE_PRECISIONS
 from .runrecord import error_record, rayon_threads
+from .scenefile import is_scene_file
 from .simulation import Simulation
 
 __all__ = ["BENCH_CASES", "add_parser", "cmd_bench"]
@@ -195,8 +196,9 @@ def cmd_bench(args: argparse.Namespace) -> int:
     for option, value in PLAIN_DEFAULTS.items():
         if getattr(args, option) is None:
             setattr(args, option, value)
-    if args.case not in BENCH_CASES:
-        raise CliError(f"--case: unknown case {args.case!r}; valid: {', '.join(BENCH_CASES)}")
+    if args.case not in BENCH_CASES and not is_scene_file(args.case):
+        raise CliError(f"--case: unknown case {args.case!r}; valid: {', '.join(BENCH_CASES)} "
+                       "or a scene file FILE.toml")
     if args.particles is not None and args.particles < 10:
         raise CliError(f"--particles: must be at least 10, got {args.particles}")
     if args.steps < 1 or args.warmup < 0:
@@ -394,7 +396,8 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
         "bench", help="time the solver on a dam break or a DualSPHysics reference case"
     )
     bench.add_argument("--case", default=None,
-                       help=f"one of: {', '.join(BENCH_CASES)} (default dambreak2d)")
+                       help=f"one of: {', '.join(BENCH_CASES)}, or a scene file FILE.toml "
+                       "(default dambreak2d)")
     bench.add_argument(
         "--particles",
         type=int,

@@ -86,7 +86,7 @@ from .runrecord import RUN_FIELDS, error_record, rayon_threads, run_record, stop
 from .scenefile import OutputOptions, SceneFile, is_scene_file, reference_markdown
 from .scenefile import dumps as scene_dumps
 from .scenefile import load as load_scene_file
-from .scenes import DamBreak, Tank
+from .scenes import DamBreak, SceneSimulation, Tank
 from .simulation import Simulation, check_interval_resolved
 from .stress import add_parser as add_stress_parser
 from .validation import sweep as _validation
@@ -536,6 +536,8 @@ def _run_particles(args: argparse.Namespace, scene: SceneFile, out: Path, sim: S
             return {"still_water": _still_water_checks(sim, builder)}
         return {}
 
+    if isinstance(sim, SceneSimulation) and builder.gauges:  # type: ignore[attr-defined]
+        sim.write_gauges_csv(out / "gauges.csv")
     run.conclude(status, error, wall, checks)
     if is_dambreak:
         assert isinstance(builder, DamBreak)

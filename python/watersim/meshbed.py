@@ -22,12 +22,15 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from ._core import SceneError
+from .flume.checks import _finite_tuple
 
 __all__ = [
     "check_closed_mesh",
@@ -219,6 +222,81 @@ def check_closed_mesh(points: npt.NDArray[np.float64], triangles: npt.NDArray[np
             "reverse the vertex order of every triangle"
         )
     return volume
+
+
+@dataclass(frozen=True)
+class ClosedMesh:
+    """A closed, outward-oriented triangle mesh read from a file or given as arrays, checked
+    (:func:`check_closed_mesh`), in scene coordinates (``scale`` and ``offset`` applied,
+    duplicate vertices merged): what a mesh beach and a mesh body hold.
+
+    Attributes:
+        offset: the offset given, as 3 floats.
+        path: the file, or None.
+        vertices, triangles: the arrays given, as plain tuples (a frozen, comparable builder
+            that a scene file can write), or None with a file.
+        points: (n, 3) vertices [m]; faces: (m, 3) triangles; volume: enclosed [m^3].
+    """
+
+    offset: tuple[float, float, float]
+    path: str | None
+    vertices: tuple[tuple[float, ...], ...] | None
+    triangles: tuple[tuple[int, ...], ...] | None
+    points: npt.NDArray[np.float64]
+    faces: npt.NDArray[np.int64]
+    volume: float
+
+    @staticmethod
+    def load(prefix: str, path: Any, vertices: Any, triangles: Any, scale: float,
+             offset: Any) -> ClosedMesh:
+        """The mesh of ``path`` or of ``vertices`` and ``triangles``; refusals name
+        ``prefix.field`` (``beach.path``, ``body.offset``)."""
+        off = _finite_tuple(f"{prefix}.offset", offset, 3)
+        if len(off) != 3:
+            raise SceneError(f"{prefix}.offset: needs 3 values (x, y, z), got {len(off)}")
+        if (path is None) == (vertices is None and triangles is None):
+            raise SceneError(f"{prefix}.path: give either a mesh file (path) or vertices and "
+                             "triangles, not both nor neither")
+        if path is not None:
+            if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+                raise SceneError(f"{prefix}.path: expected a file name, got {path!r}")
+            path = os.fspath(path)
+            raw, tri = read_triangle_mesh(path, f"{prefix}.path")
+        else:
+            if vertices is None or triangles is None:
+                missing = "triangles" if triangles is None else "vertices"
+                raise SceneError(f"{prefix}.{missing}: vertices and triangles go together")
+            raw = _rows(f"{prefix}.vertices", vertices)
+            tri_f = _rows(f"{prefix}.triangles", triangles)
+            if not np.all(np.isfinite(raw)):
+                raise SceneError(f"{prefix}.vertices: values must be finite")
+            if not np.all(tri_f == np.round(tri_f)):
+                raise SceneError(f"{prefix}.triangles: vertex indices must be whole numbers")
+            tri = tri_f.astype(np.int64)
+            check_triangle_count(tri.shape[0], f"{prefix}.triangles", "the triangles given")
+            if tri.min() < 0 or tri.max() >= raw.shape[0]:
+                raise SceneError(f"{prefix}.triangles: indices must lie in [0, "
+                                 f"{raw.shape[0] - 1}] (the vertices), got "
+                                 f"{int(tri.min())}..{int(tri.max())}")
+            vertices = tuple(tuple(float(v) for v in row) for row in raw)
+            triangles = tuple(tuple(int(i) for i in row) for row in tri)
+        pts, faces = merge_duplicate_vertices(raw * scale + np.asarray(off), tri)
+        source = f"{prefix}.path" if path is not None else f"{prefix}.vertices"
+        volume = check_closed_mesh(pts, faces, source)
+        pts.setflags(write=False)
+        faces.setflags(write=False)
+        return ClosedMesh(off, path, vertices, triangles, pts, faces, volume)  # type: ignore[arg-type]
+
+
+def _rows(name: str, values: Any) -> npt.NDArray[np.float64]:
+    """``values`` as rows of 3 numbers, or SceneError naming ``name``."""
+    try:
+        arr: npt.NDArray[np.float64] = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise SceneError(f"{name}: expected rows of 3 numbers") from None
+    if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:
+        raise SceneError(f"{name}: expected rows of 3 numbers, got shape {arr.shape}")
+    return arr
 
 
 def surface_height(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.int64],

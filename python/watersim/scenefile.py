@@ -7,8 +7,10 @@
     python3 -m watersim.scenefile --reference            # docs/scene-reference.md
 
 A scene file is the keyword arguments of a builder written as TOML: ``type`` chooses the builder
-(``"dambreak"``: :class:`~watersim.DamBreak`, ``"tank"``: :class:`~watersim.Tank`,
-``"flume"``: :class:`~watersim.FlumeScene`), the other top-level keys are its fields, and a
+(``"scene"``: :class:`~watersim.Scene`, ``"dambreak"``: :class:`~watersim.DamBreak`,
+``"tank"``: :class:`~watersim.Tank`, ``"flume"``: :class:`~watersim.FlumeScene`), the other
+top-level keys are its fields (``[[fluid]]``, ``[[bodies]]`` and ``[[gauges]]`` tables of a
+scene, each with its ``type``), and a
 field holding an object is a table of that object's fields (``[flume]``, ``[flume.beach]``,
 ``[wave]``, ``[paddle]``, ``gauges = [{...}, ...]``, ``[runup]``, ``[viscosity]``). Where a
 field takes one of several classes (beach, wave, paddle, each gauge, a numerical model) the table
@@ -47,10 +49,12 @@ from . import flume, overrides
 from . import numerics as nm
 from ._compat import tomllib
 from ._core import SceneError
+from .bodies import BODY_TYPES
+from .bodies import Mesh as MeshBody
 from .checks import _positive
 from .errors import did_you_mean
 from .flume import FlumeScene, MeshBeach
-from .scenes import DamBreak, SceneBuilder, Tank
+from .scenes import DamBreak, FillTo, FluidBlock, Scene, SceneBuilder, Tank
 
 __all__ = [
     "SCENE_TYPES",
@@ -69,6 +73,7 @@ __all__ = [
 ]
 
 SCENE_TYPES: dict[str, type[SceneBuilder]] = {
+    "scene": Scene,
     "dambreak": DamBreak,
     "tank": Tank,
     "flume": FlumeScene,
@@ -200,7 +205,8 @@ def _object_fields(cls: type) -> Iterator[tuple[str, Any, bool]]:
             yield name, hint, in_sequence
 
 
-TAGS: dict[type, str] = {**flume.TAGS, **nm.TAGS}
+TAGS: dict[type, str] = {**flume.TAGS, **nm.TAGS,
+                         **{c: c.TAG for c in (*BODY_TYPES, FluidBlock, FillTo)}}
 """The ``type`` key of a table whose field takes one of several classes (a beach, a wave, a
 paddle, a gauge, a numerical model): each model class's own ``TAG``."""
 
@@ -339,7 +345,8 @@ class _Reader:
         for name, f in fields.items():
             if _required(f) and name not in kwargs:
                 raise self.fail(_join(path, name), f"required ({cls.__name__} has no default)")
-        if cls is MeshBeach and isinstance(kwargs.get("path"), str) and self.base is not None:
+        if (cls in (MeshBeach, MeshBody) and isinstance(kwargs.get("path"), str)
+                and self.base is not None):
             # a mesh file named in a scene file is found next to it, wherever the run starts
             kwargs["path"] = str(self.base / Path(kwargs["path"]).expanduser())
         try:
@@ -701,9 +708,18 @@ def _class_rows(cls: type, skip: tuple[str, ...] = ()) -> list[str]:
 def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     """(heading, note, class, fields to skip) of each table of the reference."""
     base = tuple(SceneBuilder.field_names())
-    yield ('`type = "dambreak"` (top level)', "", DamBreak, ())
+    yield ('`type = "scene"` (top level)',
+           "A general scene: a tank, fluid blocks, bodies and gauges (`watersim.Scene`); the "
+           "numerical fields are those of the dam break below.",
+           Scene, base)
+    yield from _object_sections(Scene, "", skip=tuple(nm.OPTION_CLASSES))
+    own = ("tank", "fluid")  # the presets make them from their own fields
+    yield ('`type = "dambreak"` (top level)',
+           "A preset of the general scene: `bodies`, `gauges` and `sample_interval` as there.",
+           DamBreak, own)
     yield from _object_sections(SceneBuilder, "")
-    yield ('`type = "tank"` (top level)', "", Tank, ())
+    yield ('`type = "tank"` (top level)', "A preset of the general scene, as the dam break.",
+           Tank, own)
     yield ('`type = "flume"` (top level)',
            "The numerical fields are those of the dam break above, with the defaults below, "
            "except `energy_growth_limit`: the core's energy monitor does not run in a scene "

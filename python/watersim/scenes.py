@@ -1,4 +1,5 @@
-"""Scene builders: dam break and still-water tank, in 2D and 3D.
+"""Scene builders: the general scene (a tank, fluid blocks, solid bodies, gauges) and its
+presets, the dam break and the still-water tank, in 2D and 3D.
 
 A builder is a frozen dataclass whose fields are every physical and numerical parameter of the
 case. All fields are checked when the builder is created (and again by :meth:`to_scene`), so a bad
@@ -24,22 +25,33 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import os
+import re
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
 
 from . import _core
 from . import numerics as nm
 from ._core import SceneError
+from .bodies import BODY_TYPES, Body
 from .checks import _choice, _integer, _non_negative, _positive
-
-if TYPE_CHECKING:
-    from .simulation import Simulation
+from .flume.checks import _TOL, _finite_tuple, _models_of, _set
+from .flume.gauges import SCENE_GAUGE_TYPES, Gauge, check_gauges, gauge_specs
+from .flume.records import FlumeGauges
+from .simulation import Simulation
 
 __all__ = [
     "DamBreak",
+    "FillTo",
+    "FluidBlock",
+    "Scene",
     "SceneBuilder",
+    "SceneSimulation",
     "Tank",
 ]
 
@@ -304,8 +316,307 @@ class SceneBuilder:
         return out
 
 
+@dataclass(frozen=True)
+class FluidBlock:
+    """Water filling the box ``[min, max]`` (outside the bodies), at rest with hydrostatic
+    density from its top.
+
+    Attributes:
+        min, max: opposite corners [m], (x, z) or (x, y, z), inside the tank.
+    """
+
+    min: tuple[float, ...]
+    max: tuple[float, ...]
+
+    TAG: ClassVar[str] = "block"
+
+    def __post_init__(self) -> None:
+        lo = _finite_tuple("fluid.min", self.min, 2)
+        hi = _finite_tuple("fluid.max", self.max, 2)
+        if len(lo) != len(hi) or len(lo) not in (2, 3):
+            raise SceneError("fluid.max: min and max need 2 (x, z) or 3 (x, y, z) values each")
+        if any(b <= a for a, b in zip(lo, hi, strict=True)):
+            raise SceneError(f"fluid.max: must be above min on every axis ({lo} -> {hi})")
+        _set(self, "min", lo)
+        _set(self, "max", hi)
+
+    def box(self, size: tuple[float, ...]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """``(min, max)`` of the water in a tank of inner ``size``."""
+        return self.min, self.max
+
+
+@dataclass(frozen=True)
+class FillTo:
+    """Water over the whole tank floor up to ``level`` (outside the bodies).
+
+    Attributes:
+        level: height of the still water above the floor [m].
+    """
+
+    level: float
+
+    TAG: ClassVar[str] = "fill"
+
+    def __post_init__(self) -> None:
+        _set(self, "level", _positive("fluid.level", self.level))
+
+    def box(self, size: tuple[float, ...]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        return (0.0,) * len(size), (*size[:-1], self.level)
+
+
+Fluid = FluidBlock | FillTo
+"""A block of water of a :class:`Scene`."""
+
+
+class SceneSimulation(Simulation):
+    """A run of a :class:`Scene` (or a preset): a :class:`~watersim.Simulation` with its gauge
+    records as NumPy arrays and CSV.
+
+    Args:
+        setup: the scene builder.
+    """
+
+    def __init__(self, setup: Scene) -> None:
+        try:
+            super().__init__(setup.to_scene())
+        except SceneError as exc:
+            # the core names a body by its obstacle index, which is its index in `bodies`
+            raise SceneError(re.sub(r"^obstacles\[", "bodies[", str(exc))) from None
+        self.setup = setup
+        self._gauges_cache: tuple[int, FlumeGauges] | None = None
+
+    def run(  # type: ignore[override]
+        self,
+        until: float | None = None,
+        callback_every: float | None = None,
+        callback: Callable[[Simulation], None] | None = None,
+        progress: bool = False,
+    ) -> None:
+        """Advance to ``until`` [s], default the scene's ``until`` (otherwise as
+        :meth:`watersim.Simulation.run`)."""
+        end = float(self.setup.until if until is None else until)  # type: ignore[arg-type]
+        super().run(end, callback_every=callback_every, callback=callback, progress=progress)
+
+    @property
+    def gauges(self) -> FlumeGauges:
+        """The gauge records so far (:class:`~watersim.FlumeGauges`: ``records[name]`` of the
+        pressure, force and overtopping gauges, ``elevation`` of the elevation gauges, which
+        in a scene read the water's height above the floor)."""
+        if self._gauges_cache is None or self._gauges_cache[0] != self.steps:
+            self._gauges_cache = (self.steps, FlumeGauges(self.setup,  # type: ignore[arg-type]
+                                                          self._sim.gauges()))
+        return self._gauges_cache[1]
+
+    def write_gauges_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write ``gauges.csv`` (see :meth:`~watersim.FlumeGauges.to_csv`)."""
+        return self.gauges.to_csv(path)
+
+
 @dataclass(frozen=True, kw_only=True)
-class DamBreak(SceneBuilder):
+class Scene(SceneBuilder):
+    """A general scene: a box tank with an open top, any number of fluid blocks, fixed solid
+    bodies and gauges, in 2D or 3D. The dam break and the still tank are presets of it
+    (:class:`DamBreak`, :class:`Tank`: their own fields make the tank and the water, and they
+    take ``bodies`` and ``gauges`` like any scene). Example: ``examples/dambreak_box3d.py``.
+
+    The tank's inner faces are x = 0 and x = length, y = 0 and y = width (3D), the floor z = 0;
+    particles sit on a lattice at ``(i + 1/2) dp``. A body is sampled as wall particles of the
+    scene's wall model (``boundary``); fluid inside a body is removed, and fluid that bodies
+    close off from the open top is refused when the particles are built (the field is the
+    nearest body). Bad input is refused naming the field: a body outside the tank
+    (``bodies[i].max``), a mesh that is not closed (``bodies[i].path``), a pressure sensor
+    ``on_wall`` farther than dp from every wall (``gauges[i].points[j]``, when built).
+
+    Attributes:
+        tank: the tank's inner size [m]: (length, height) in 2D, (length, width, height) in 3D;
+            ``dim`` follows it.
+        fluid: the water: :class:`FluidBlock` boxes anywhere in the tank, or :class:`FillTo`
+            a level over the whole floor; at least one.
+        bodies: fixed solid bodies (:mod:`watersim.bodies`: :class:`~watersim.Box`,
+            :class:`~watersim.Sphere`, :class:`~watersim.Cylinder`, :class:`~watersim.Capsule`,
+            :class:`~watersim.Polygon`, :class:`~watersim.HalfSpace`, :class:`~watersim.Mesh`).
+        gauges: gauges of any kind: :class:`~watersim.ElevationGauge` (reads the water's height
+            above the floor), :class:`~watersim.VelocityProbe`,
+            :class:`~watersim.VelocityWindow`, :class:`~watersim.PressureGauge` (``on_wall``
+            for sensors on a wall or body), :class:`~watersim.ForceGauge` (on a named body),
+            :class:`~watersim.OvertoppingGauge`.
+        sample_interval: the gauges' sampling interval where a gauge gives none [s]; default
+            ``until / 200``.
+    """
+
+    _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
+        2: {"until": 1.0, **nm.VERIFICATION},
+        3: {"until": 1.0, **nm.VERIFICATION},
+    }
+    PLACE: ClassVar[str] = "tank"
+    """What the gauges' messages call the scene's extent."""
+    BODIES: ClassVar[str] = "bodies"
+    """The field holding the scene's bodies, for messages."""
+
+    dim: int | None = None  # type: ignore[assignment]
+    tank: tuple[float, ...] | None = None
+    fluid: Sequence[Fluid] = ()
+    bodies: Sequence[Body] = ()
+    gauges: Sequence[Gauge] = ()
+    sample_interval: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.tank is not None:
+            size = _finite_tuple("tank", self.tank, 2)
+            if len(size) not in (2, 3):
+                raise SceneError(f"tank: needs (length, height) or (length, width, height), got "
+                                 f"{len(size)} values")
+            _set(self, "tank", size)
+            if self.dim is None:
+                _set(self, "dim", len(size))
+        if self.dim is None:
+            _set(self, "dim", 2)
+        for field, classes in (("fluid", (FluidBlock, FillTo)), ("bodies", BODY_TYPES),
+                               ("gauges", SCENE_GAUGE_TYPES)):
+            _models_of(self, field, classes)
+        super().__post_init__()
+
+    # -- the geometry a preset replaces ---------------------------------------------------------
+
+    def tank_size(self) -> tuple[float, ...]:
+        """The tank's inner size [m] (length, [width,] height)."""
+        if self.tank is None:
+            raise SceneError("tank: required: (length, height) or (length, width, height)")
+        return self.tank
+
+    def fluid_boxes(self) -> list[tuple[tuple[float, ...], tuple[float, ...]]]:
+        """The water as boxes ``(min, max)`` [m], in the core's order."""
+        size = self.tank_size()
+        return [f.box(size) for f in self.fluid]
+
+    # -- checks ---------------------------------------------------------------------------------
+
+    def _validate_geometry(self) -> None:
+        dp = _positive("dp", self.dp)
+        size = self.tank_size()
+        if len(size) != self.dim:
+            raise SceneError(f"tank: a {self.dim}D scene needs {self.dim} sizes, got {len(size)}")
+        for k, extent in enumerate(size):
+            if extent < 2.0 * dp * (1.0 - 1e-9):
+                raise SceneError(f"tank: {extent:g} m along axis {k} is less than 2 dp")
+        if not self.fluid:
+            raise SceneError("fluid: at least one FluidBlock or FillTo is needed")
+        for i, (f, (lo, hi)) in enumerate(zip(self.fluid, self.fluid_boxes(), strict=True)):
+            label = f"fluid[{i}]"
+            if len(lo) != self.dim:
+                raise SceneError(f"{label}.min: a {self.dim}D scene needs {self.dim} "
+                                 f"coordinates, got {len(lo)}")
+            for k in range(self.dim):
+                if lo[k] < -_TOL or hi[k] > size[k] + _TOL:
+                    field = "level" if isinstance(f, FillTo) else (
+                        "min" if lo[k] < -_TOL else "max")
+                    raise SceneError(f"{label}.{field}: the water spans [{lo[k]:g}, {hi[k]:g}] m "
+                                     f"along axis {k}, outside the tank [0, {size[k]:g}] m")
+                if hi[k] - lo[k] < dp * (1.0 - 1e-9):
+                    raise SceneError(f"{label}: the water is {hi[k] - lo[k]:g} m thick along "
+                                     f"axis {k}, less than dp = {dp:g} m")
+        self._validate_contents()
+
+    def _validate_contents(self) -> None:
+        """The bodies (inside the tank, resolved, uniquely named) and the gauges."""
+        dp = float(self.dp)  # type: ignore[arg-type]
+        size = self.tank_size()
+        names: set[str] = set()
+        for i, body in enumerate(self.bodies):
+            body.check_in(int(self.dim), (0.0,) * len(size), size, dp,  # type: ignore[arg-type]
+                          f"bodies[{i}]")
+            if body.name is not None:
+                if body.name in names:
+                    raise SceneError(f"bodies[{i}].name: duplicate body name {body.name!r}")
+                names.add(body.name)
+        if self.sample_interval is not None:
+            _positive("sample_interval", self.sample_interval)
+        check_gauges(self, self.gauges)  # type: ignore[arg-type]
+
+    # -- what the gauges ask of their scene ------------------------------------------------------
+
+    def extent(self, axis: int) -> tuple[float, float]:
+        """``(low, high)`` [m] of the tank along horizontal ``axis``."""
+        return 0.0, self.tank_size()[axis]
+
+    @property
+    def level(self) -> float:
+        """The level elevation gauges measure from: the floor (they read the water's height)."""
+        return 0.0
+
+    def still_depth(self, x: Any, y: Any = None) -> np.ndarray:
+        """Zeros: a scene's elevation gauges read heights above the floor, not zeroed."""
+        return np.zeros_like(np.asarray(x, dtype=np.float64))
+
+    def check_point(self, label: str, point: Sequence[float], vertical: bool = True) -> None:
+        """A point (x, z) / (x, y, z) inside the tank, or SceneError naming ``label``."""
+        size = self.tank_size()
+        if len(point) != self.dim:
+            raise SceneError(f"{label}: needs {self.dim} coordinates in {self.dim}D, got "
+                             f"{len(point)}")
+        for k in range(self.dim if vertical else self.dim - 1):  # type: ignore[operator]
+            if not -_TOL <= point[k] <= size[k] + _TOL:
+                raise SceneError(f"{label}: coordinate {k} = {point[k]:g} m lies outside the "
+                                 f"tank [0, {size[k]:g}] m")
+
+    def body_names(self) -> list[str]:
+        """The names of the named bodies."""
+        return [b.name for b in self.bodies if b.name is not None]
+
+    def obstacle_index(self, name: str) -> int | None:
+        """The core's obstacle index of the body named ``name``, None if there is none."""
+        for i, b in enumerate(self.bodies):
+            if b.name == name:
+                return i
+        return None
+
+    @property
+    def gauge_interval(self) -> float:
+        """The gauges' default sampling interval [s]."""
+        if self.sample_interval is not None:
+            return float(self.sample_interval)
+        return float(self.until) / 200.0  # type: ignore[arg-type]
+
+    def _gauge_specs(self) -> list[dict[str, Any]]:
+        return gauge_specs(self, self.gauges, self.gauge_interval)  # type: ignore[arg-type]
+
+    # -- scene ----------------------------------------------------------------------------------
+
+    def _geometry(self) -> dict[str, Any]:
+        size = [float(v) for v in self.tank_size()]
+        scene: dict[str, Any] = {
+            "tank": {"min": [0.0] * len(size), "max": size},
+            "obstacles": [b.to_core() for b in self.bodies],
+            "fluid": [{"min": [float(v) for v in lo], "max": [float(v) for v in hi]}
+                      for lo, hi in self.fluid_boxes()],
+        }
+        if self.gauges:
+            scene["gauges"] = self._gauge_specs()
+        return scene
+
+    def build(self) -> SceneSimulation:
+        """Build the particles: a ready :class:`SceneSimulation`."""
+        return SceneSimulation(self)
+
+
+class _Preset(Scene):
+    """A preset of :class:`Scene`: its own fields make the tank and the water."""
+
+    def _refuse_general_geometry(self) -> None:
+        for name in ("tank", "fluid"):
+            if getattr(self, name) not in (None, ()):
+                raise SceneError(f"{name}: a {type(self).__name__} makes its own tank and water "
+                                 "from its fields; use watersim.Scene for another geometry")
+
+    def fluid_boxes(self) -> list[tuple[tuple[float, ...], tuple[float, ...]]]:
+        return [((0.0,) * self.dim, self._fluid_top())]  # type: ignore[operator]
+
+    def _fluid_top(self) -> tuple[float, ...]:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+
+@dataclass(frozen=True, kw_only=True)
+class DamBreak(_Preset):
     """Collapse of a water column against the back wall of a box tank.
 
     The column ``[0, width] x [0, height]`` (in 3D ``x [0, tank_width]`` across) stands against
@@ -335,6 +646,7 @@ class DamBreak(SceneBuilder):
         3: {"dp": 0.1, "until": 0.7, "tank_width": 0.5, **nm.VERIFICATION},
     }
 
+    dim: int = 2
     width: float = 1.0
     height: float = 2.0
     tank_length: float = 4.0
@@ -342,6 +654,7 @@ class DamBreak(SceneBuilder):
     tank_width: float | None = None
 
     def _validate_geometry(self) -> None:
+        self._refuse_general_geometry()
         dp = _positive("dp", self.dp)
         width = _positive("width", self.width)
         height = _positive("height", self.height)
@@ -365,25 +678,23 @@ class DamBreak(SceneBuilder):
             _resolution("tank_width", tank_width, dp, "tank width")
         elif self.tank_width is not None:
             raise SceneError("tank_width: only used in 3D (dim = 3); leave it unset in 2D")
+        self._validate_contents()
 
-    def _geometry(self) -> dict[str, Any]:
+    def tank_size(self) -> tuple[float, ...]:
         if self.dim == 2:
-            tank_max = [float(self.tank_length), float(self.tank_height)]
-            fluid_max = [float(self.width), float(self.height)]
-        else:
-            assert self.tank_width is not None
-            tank_max = [float(self.tank_length), float(self.tank_width), float(self.tank_height)]
-            fluid_max = [float(self.width), float(self.tank_width), float(self.height)]
-        zero = [0.0] * self.dim
-        return {
-            "tank": {"min": list(zero), "max": tank_max},
-            "obstacles": [],
-            "fluid": [{"min": list(zero), "max": fluid_max}],
-        }
+            return (float(self.tank_length), float(self.tank_height))
+        assert self.tank_width is not None
+        return (float(self.tank_length), float(self.tank_width), float(self.tank_height))
+
+    def _fluid_top(self) -> tuple[float, ...]:
+        if self.dim == 2:
+            return (float(self.width), float(self.height))
+        assert self.tank_width is not None
+        return (float(self.width), float(self.tank_width), float(self.height))
 
 
 @dataclass(frozen=True, kw_only=True)
-class Tank(SceneBuilder):
+class Tank(_Preset):
     """Still water of depth ``depth`` filling a box tank: the hydrostatic verification case.
 
     The water should stay at rest, its surface at ``depth`` and its pressure hydrostatic,
@@ -406,12 +717,14 @@ class Tank(SceneBuilder):
             **nm.VERIFICATION},
     }
 
+    dim: int = 2
     length: float | None = None
     depth: float | None = None
     height: float | None = None
     width: float | None = None
 
     def _validate_geometry(self) -> None:
+        self._refuse_general_geometry()
         dp = _positive("dp", self.dp)
         length = _positive("length", self.length)
         depth = _positive("depth", self.depth)
@@ -430,19 +743,18 @@ class Tank(SceneBuilder):
             _resolution("width", width, dp, "tank width")
         elif self.width is not None:
             raise SceneError("width: only used in 3D (dim = 3); leave it unset in 2D")
+        self._validate_contents()
 
-    def _geometry(self) -> dict[str, Any]:
-        assert self.length is not None and self.depth is not None and self.height is not None
+    def tank_size(self) -> tuple[float, ...]:
+        assert self.length is not None and self.height is not None
         if self.dim == 2:
-            tank_max = [float(self.length), float(self.height)]
-            fluid_max = [float(self.length), float(self.depth)]
-        else:
-            assert self.width is not None
-            tank_max = [float(self.length), float(self.width), float(self.height)]
-            fluid_max = [float(self.length), float(self.width), float(self.depth)]
-        zero = [0.0] * self.dim
-        return {
-            "tank": {"min": list(zero), "max": tank_max},
-            "obstacles": [],
-            "fluid": [{"min": list(zero), "max": fluid_max}],
-        }
+            return (float(self.length), float(self.height))
+        assert self.width is not None
+        return (float(self.length), float(self.width), float(self.height))
+
+    def _fluid_top(self) -> tuple[float, ...]:
+        assert self.length is not None and self.depth is not None
+        if self.dim == 2:
+            return (float(self.length), float(self.depth))
+        assert self.width is not None
+        return (float(self.length), float(self.width), float(self.depth))

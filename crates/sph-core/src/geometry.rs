@@ -33,6 +33,8 @@ enum Solid<D: Dim> {
     /// Bed polyline in the x-z plane (vertices in order of increasing x).
     Profile { x: Vec<Real>, z: Vec<Real>, line: parry2d_f64::shape::Polyline },
     Mesh(Box<D::Mesh>),
+    /// Sphere, cylinder, capsule or convex polygon: a placed parry shape.
+    Shape(D::Shape),
 }
 
 impl<D: Dim> Solid<D> {
@@ -45,6 +47,7 @@ impl<D: Dim> Solid<D> {
             Solid::Plane { point, normal } => D::plane_projection(*point, *normal, p),
             Solid::Profile { x, z, line } => profile_projection::<D>(x, z, line, p),
             Solid::Mesh(mesh) => D::mesh_projection(mesh, p),
+            Solid::Shape(shape) => D::shape_projection(shape, p),
         }
     }
 
@@ -91,6 +94,18 @@ fn solids<D: Dim>(scene: &Scene) -> Result<Vec<Solid<D>>> {
                 Obstacle::Plane { point, normal } => {
                     let n = D::V::from_slice(normal);
                     Solid::Plane { point: D::V::from_slice(point), normal: n * (1.0 / n.length()) }
+                }
+                Obstacle::Sphere { centre, radius } => Solid::Shape(D::ball(D::V::from_slice(centre), *radius)),
+                Obstacle::Capsule { a, b, radius } => {
+                    Solid::Shape(D::capsule(D::V::from_slice(a), D::V::from_slice(b), *radius))
+                }
+                Obstacle::Cylinder { a, b, radius } => Solid::Shape(
+                    D::cylinder(D::V::from_slice(a), D::V::from_slice(b), *radius)
+                        .map_err(|e| Error::invalid(format!("obstacles[{i}]"), e))?,
+                ),
+                Obstacle::Polygon { vertices } => {
+                    let points: Vec<D::V> = vertices.iter().map(|v| D::V::from_slice(v)).collect();
+                    Solid::Shape(D::convex_polygon(&points).map_err(|e| Error::invalid(format!("obstacles[{i}].vertices"), e))?)
                 }
             })
         })
@@ -221,6 +236,8 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
         moving_surface: Vec::new(),
     };
     let paddle_face = scene.paddle.as_ref().map(|p| p.x);
+    // bodies can close a pocket of fluid off from the open top: flood the lattice to find it
+    let mut enclosure = (!solids.is_empty()).then(|| Enclosure::new(&lo, &hi, dim));
     let vertical = dim - 1;
     let mut idx = [0i64; 3];
     for iz in lo[2]..hi[2] {
@@ -239,14 +256,22 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
                     outside = outside.max(tank_min.get(k) - p.get(k)).max(p.get(k) - tank_max.get(k));
                 }
                 let in_tank = outside <= 0.0;
-                let is_wall = if !in_tank {
-                    outside <= thickness && p.get(vertical) <= tank_max.get(vertical)
+                // (in the wall shell of a solid, inside a solid); the shell is inside
+                let (is_wall, inside) = if !in_tank {
+                    (outside <= thickness && p.get(vertical) <= tank_max.get(vertical), false)
                 } else {
-                    solids.iter().any(|s| {
+                    solids.iter().fold((false, false), |(wall, inside), s| {
+                        if wall {
+                            return (true, true);
+                        }
                         let d = s.signed_distance(p);
-                        d < 0.0 && d >= -thickness
+                        (d < 0.0 && d >= -thickness, inside || d < 0.0)
                     })
                 };
+                let site = enclosure.as_mut().and_then(|e| e.site(&idx));
+                if let (Some(e), Some(k), false) = (enclosure.as_mut(), site, is_wall || inside) {
+                    e.open[k / 64] |= 1 << (k % 64);
+                }
                 if is_wall {
                     out.walls.push(p);
                     out.wall_surface.push(surface_above::<D>(&fluid_boxes, p, thickness));
@@ -269,11 +294,14 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
                 // sloping bed instead leaves an empty strip dp/2 thick along it,
                 // which walls that do not hold the water off, Adami's, let the water fill: the
                 // level over a beach then falls by a fraction of dp at the start.)
-                if solids.iter().any(|s| s.signed_distance(p) < 0.0) {
+                if inside {
                     continue;
                 }
                 if paddle_face.is_some_and(|x| p.get(0) < x + half - tol) {
                     continue;
+                }
+                if let (Some(e), Some(k)) = (enclosure.as_mut(), site) {
+                    e.fluid_sites.push(k);
                 }
                 out.fluid.push(p);
                 out.fluid_surface.push(top);
@@ -283,11 +311,172 @@ pub fn sample<D: Dim>(scene: &Scene) -> Result<Sampled<D>> {
     if let Some(paddle) = &scene.paddle {
         sample_paddle::<D>(scene, paddle, &fluid_boxes, &mut out);
     }
+    if let Some(e) = enclosure {
+        if let Some((n, first)) = e.trapped() {
+            let p = out.fluid[first];
+            let nearest = (0..solids.len())
+                .min_by(|&a, &b| solids[a].signed_distance(p).abs().total_cmp(&solids[b].signed_distance(p).abs()))
+                .unwrap_or(0);
+            return Err(Error::invalid(
+                format!("obstacles[{nearest}]"),
+                format!(
+                    "{n} fluid particles (the first at {:?}) are enclosed by this body, the other bodies and the tank with no path to the open top; remove the fluid there or open the pocket",
+                    p.as_slice()
+                ),
+            ));
+        }
+    }
     if out.fluid.is_empty() {
         return Err(Error::invalid(
             "fluid",
             "the geometry leaves no fluid particle (fluid boxes are empty, outside the tank or inside obstacles)",
         ));
+    }
+    Ok(out)
+}
+
+/// The lattice sites inside the tank's index box that neither a wall nor a solid holds (a bit
+/// each), and the site of each fluid particle, for finding fluid that bodies close off from the
+/// open top.
+struct Enclosure {
+    n: [usize; 3],
+    open: Vec<u64>,
+    fluid_sites: Vec<usize>,
+}
+
+impl Enclosure {
+    /// The tank's index box: lattice indices `0..hi[k]` (`hi` without the wall layers).
+    fn new(lo: &[i64; 3], hi: &[i64; 3], dim: usize) -> Self {
+        let mut n = [1usize; 3];
+        for k in 0..dim {
+            n[k] = (hi[k] - if k == dim - 1 { 0 } else { -lo[k] }).max(1) as usize;
+        }
+        let sites = n[0] * n[1] * n[2];
+        Enclosure { n, open: vec![0; sites.div_ceil(64)], fluid_sites: Vec::new() }
+    }
+
+    /// The site of lattice index `idx`, if inside the index box.
+    fn site(&self, idx: &[i64; 3]) -> Option<usize> {
+        let mut k = 0usize;
+        for a in (0..3).rev() {
+            let i = usize::try_from(idx[a]).ok().filter(|&i| i < self.n[a])?;
+            k = k * self.n[a] + i;
+        }
+        Some(k)
+    }
+
+    fn is_open(&self, k: usize) -> bool {
+        self.open[k / 64] >> (k % 64) & 1 == 1
+    }
+
+    /// Floods the open sites from the top layer of the index box (the tank's open top) through
+    /// face neighbours; returns how many fluid particles it did not reach and the first of them.
+    fn trapped(&self) -> Option<(usize, usize)> {
+        let [nx, ny, nz] = self.n;
+        let up = if nz > 1 { 2 } else { 1 };
+        let (layer, count) = if up == 2 { (nx * ny, nz) } else { (nx, ny) };
+        let mut seen = vec![0u64; self.open.len()];
+        let mut queue = std::collections::VecDeque::new();
+        for k in (count - 1) * layer..count * layer {
+            if self.is_open(k) {
+                seen[k / 64] |= 1 << (k % 64);
+                queue.push_back(k);
+            }
+        }
+        let strides = [1usize, nx, nx * ny];
+        while let Some(k) = queue.pop_front() {
+            let coord = [k % nx, (k / nx) % ny, k / (nx * ny)];
+            for a in 0..3 {
+                let len = self.n[a];
+                for (step, ok) in [(-1i64, coord[a] > 0), (1, coord[a] + 1 < len)] {
+                    if !ok {
+                        continue;
+                    }
+                    let j = if step < 0 { k - strides[a] } else { k + strides[a] };
+                    if self.is_open(j) && seen[j / 64] >> (j % 64) & 1 == 0 {
+                        seen[j / 64] |= 1 << (j % 64);
+                        queue.push_back(j);
+                    }
+                }
+            }
+        }
+        let unreached: Vec<usize> =
+            (0..self.fluid_sites.len()).filter(|&i| seen[self.fluid_sites[i] / 64] >> (self.fluid_sites[i] % 64) & 1 == 0).collect();
+        unreached.first().map(|&first| (unreached.len(), first))
+    }
+}
+
+/// The sampled points of a pressure gauge `on_wall` (`field`, its points flattened): each point
+/// moved from the nearest wall surface (the tank's floor and sides, an obstacle's surface)
+/// along its normal to dp/2 inside the fluid. A point farther than dp from every wall surface
+/// is refused, naming it.
+pub fn wall_sensor_points<D: Dim>(scene: &Scene, field: &str, points: &[Real]) -> Result<Vec<Real>> {
+    let dim = D::DIM;
+    let dp = scene.dp;
+    let solids = solids::<D>(scene)?;
+    let (tank_min, tank_max) = (D::V::from_slice(&scene.tank.min), D::V::from_slice(&scene.tank.max));
+    let mut out = Vec::with_capacity(points.len());
+    let in_fluid = |q: D::V| {
+        (0..dim).all(|k| q.get(k) >= tank_min.get(k) && q.get(k) <= tank_max.get(k))
+            && solids.iter().all(|s| s.signed_distance(q) >= 0.0)
+    };
+    for (j, pt) in points.chunks(dim).enumerate() {
+        let p = D::V::from_slice(pt);
+        // each surface near p: (distance to it, signed distance on the fluid's side, unit normal
+        // into the fluid)
+        let mut near: Vec<(Real, Real, D::V)> = Vec::new();
+        for k in 0..dim {
+            // the faces at min (all axes) and max (horizontal axes: the top is open), where the
+            // point lies over the face
+            let over = (0..dim).filter(|&a| a != k).all(|a| p.get(a) >= tank_min.get(a) - dp && p.get(a) <= tank_max.get(a) + dp);
+            if !over {
+                continue;
+            }
+            let mut n = D::V::ZERO;
+            n.set(k, 1.0);
+            near.push(((p.get(k) - tank_min.get(k)).abs(), p.get(k) - tank_min.get(k), n));
+            if k < dim - 1 {
+                near.push(((tank_max.get(k) - p.get(k)).abs(), tank_max.get(k) - p.get(k), n * -1.0));
+            }
+        }
+        for s in &solids {
+            let d = s.signed_distance(p);
+            // the outward normal: the signed distance's gradient, by central differences
+            let eps = 1e-4 * dp;
+            let mut g = D::V::ZERO;
+            for a in 0..dim {
+                let mut e = D::V::ZERO;
+                e.set(a, eps);
+                g.set(a, (s.signed_distance(p + e) - s.signed_distance(p - e)) / (2.0 * eps));
+            }
+            let len = g.length();
+            if len > 0.0 && len.is_finite() {
+                near.push((d.abs(), d, g * (1.0 / len)));
+            }
+        }
+        near.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let closest = near.first().map(|c| c.0);
+        // the nearest surface within dp whose side the point moves to is fluid (not the floor
+        // under a body standing on it, say)
+        let sampled = near
+            .iter()
+            .filter(|(d, _, _)| *d <= dp * (1.0 + 1e-9))
+            .map(|&(_, s, n)| p + n * (0.5 * dp - s))
+            .find(|&q| in_fluid(q));
+        match sampled {
+            Some(q) => out.extend_from_slice(q.as_slice()),
+            None => {
+                let how = match closest {
+                    Some(d) if d <= dp * (1.0 + 1e-9) => "on no wall surface facing the fluid (inside a body or a wall)".to_string(),
+                    Some(d) => format!("{d:.4} m from the nearest wall or body surface, farther than dp = {dp}"),
+                    None => format!("farther than dp = {dp} from every wall surface"),
+                };
+                return Err(Error::invalid(
+                    format!("{field}.points[{j}]"),
+                    format!("{:?} is {how}: a sensor on a wall sits on the tank's floor or sides or on a body, on the water's side", pt),
+                ));
+            }
+        }
     }
     Ok(out)
 }
@@ -434,6 +623,120 @@ mod tests {
         assert!(with.walls.len() > without.walls.len());
         let flat = json.replace(r#""dim": 3"#, r#""dim": 2"#);
         assert!(Scene::from_json(&flat).is_err());
+    }
+
+    fn tank_with(dim: usize, bodies: &str, extra: &str) -> String {
+        let (tank, fluid) = if dim == 2 {
+            (r#"{"min": [0, 0], "max": [1, 0.8]}"#, r#"{"min": [0, 0], "max": [1, 0.6]}"#)
+        } else {
+            (r#"{"min": [0, 0, 0], "max": [1, 0.8, 0.8]}"#, r#"{"min": [0, 0, 0], "max": [1, 0.8, 0.6]}"#)
+        };
+        format!(r#"{{"dim": {dim}, "dp": 0.02, "tank": {tank}, "fluid": [{fluid}], "obstacles": [{bodies}] {extra}}}"#)
+    }
+
+    /// Fluid volume a body removes from the tank of [`tank_with`].
+    fn removed<D: Dim>(bodies: &str) -> f64 {
+        let full = sample::<D>(&scene(&tank_with(D::DIM, "", ""))).expect("sampled").fluid.len();
+        let with = sample::<D>(&scene(&tank_with(D::DIM, bodies, ""))).expect("sampled").fluid.len();
+        (full - with) as f64 * 0.02f64.powi(D::DIM as i32)
+    }
+
+    #[test]
+    fn parry_bodies_remove_their_volume() {
+        use std::f64::consts::PI;
+        let cases2 = [
+            (r#"{"shape": "sphere", "centre": [0.5, 0.3], "radius": 0.15}"#, PI * 0.15 * 0.15),
+            (r#"{"shape": "capsule", "a": [0.3, 0.3], "b": [0.7, 0.3], "radius": 0.1}"#, PI * 0.01 + 0.4 * 0.2),
+            (r#"{"shape": "polygon", "vertices": [[0.2, 0], [0.8, 0], [0.5, 0.4]]}"#, 0.5 * 0.6 * 0.4),
+        ];
+        for (body, volume) in cases2 {
+            let r = removed::<Dim2>(body);
+            assert!((r - volume).abs() < 0.03 * volume, "{body}: removed {r}, volume {volume}");
+        }
+        let cases3 = [
+            (r#"{"shape": "sphere", "centre": [0.5, 0.4, 0.3], "radius": 0.2}"#, 4.0 / 3.0 * PI * 0.008),
+            (r#"{"shape": "cylinder", "a": [0.5, 0.4, 0], "b": [0.5, 0.4, 0.5], "radius": 0.15}"#, PI * 0.0225 * 0.5),
+            (r#"{"shape": "cylinder", "a": [0.2, 0.4, 0.3], "b": [0.8, 0.4, 0.3], "radius": 0.1}"#, PI * 0.01 * 0.6),
+            (r#"{"shape": "capsule", "a": [0.3, 0.4, 0.3], "b": [0.7, 0.4, 0.3], "radius": 0.1}"#, PI * 0.01 * 0.4 + 4.0 / 3.0 * PI * 0.001),
+        ];
+        for (body, volume) in cases3 {
+            let r = removed::<Dim3>(body);
+            assert!((r - volume).abs() < 0.04 * volume, "{body}: removed {r}, volume {volume}");
+        }
+    }
+
+    fn refusal(json: &str, build: bool) -> String {
+        let err = match Scene::from_json(json) {
+            Err(e) => e,
+            Ok(s) if build => match if s.dim == 2 { sample::<Dim2>(&s).map(|_| ()) } else { sample::<Dim3>(&s).map(|_| ()) } {
+                Err(e) => e,
+                Ok(()) => panic!("accepted: {json}"),
+            },
+            Ok(_) => panic!("accepted: {json}"),
+        };
+        match err {
+            Error::InvalidScene { field, .. } => field,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn bad_bodies_are_refused_naming_the_field() {
+        let outside = tank_with(2, r#"{"shape": "sphere", "centre": [0.95, 0.3], "radius": 0.1}"#, "");
+        assert_eq!(refusal(&outside, false), "obstacles[0]");
+        // the top is open: a column may rise above the walls
+        assert!(Scene::from_json(&tank_with(2, r#"{"shape": "box", "min": [0.4, 0], "max": [0.5, 0.9]}"#, "")).is_ok());
+        let tilted = tank_with(3, r#"{"shape": "cylinder", "a": [0.1, 0.4, 0.1], "b": [0.9, 0.4, 0.1], "radius": 0.2}"#, "");
+        assert_eq!(refusal(&tilted, false), "obstacles[0]");
+        let concave = tank_with(2, r#"{"shape": "polygon", "vertices": [[0.2, 0], [0.8, 0], [0.5, 0.1], [0.5, 0.4]]}"#, "");
+        assert_eq!(refusal(&concave, false), "obstacles[0].vertices");
+        let flat_cylinder = tank_with(2, r#"{"shape": "cylinder", "a": [0.5, 0.1], "b": [0.5, 0.3], "radius": 0.1}"#, "");
+        assert_eq!(refusal(&flat_cylinder, false), "obstacles[0]");
+        // a box with one face missing: an open mesh
+        let v = "[[0.3,0.3,0.1],[0.7,0.3,0.1],[0.7,0.6,0.1],[0.3,0.6,0.1],[0.3,0.3,0.4],[0.7,0.3,0.4],[0.7,0.6,0.4],[0.3,0.6,0.4]]";
+        let closed = "[[0,2,1],[0,3,2],[4,5,6],[4,6,7],[0,1,5],[0,5,4],[1,2,6],[1,6,5],[2,3,7],[2,7,6],[3,0,4],[3,4,7]]";
+        let open = "[[0,2,1],[0,3,2],[4,5,6],[4,6,7],[0,1,5],[0,5,4],[1,2,6],[1,6,5],[2,3,7],[2,7,6]]";
+        let flipped = "[[0,1,2],[0,3,2],[4,5,6],[4,6,7],[0,1,5],[0,5,4],[1,2,6],[1,6,5],[2,3,7],[2,7,6],[3,0,4],[3,4,7]]";
+        let mesh = |t: &str| tank_with(3, &format!(r#"{{"shape": "mesh", "vertices": {v}, "triangles": {t}}}"#), "");
+        assert!(Scene::from_json(&mesh(closed)).is_ok());
+        assert_eq!(refusal(&mesh(open), false), "obstacles[0].triangles");
+        assert_eq!(refusal(&mesh(flipped), false), "obstacles[0].triangles");
+    }
+
+    #[test]
+    fn fluid_enclosed_by_bodies_is_refused() {
+        // a cup: a floor-standing U of three boxes with water in and around it is fine...
+        let cup = r#"{"shape": "box", "min": [0.2, 0], "max": [0.3, 0.5]}, {"shape": "box", "min": [0.6, 0], "max": [0.7, 0.5]},
+                     {"shape": "box", "min": [0.3, 0], "max": [0.6, 0.1]}"#;
+        assert!(sample::<Dim2>(&scene(&tank_with(2, cup, ""))).is_ok());
+        // ...but a lid over it (water to 0.6 m fills the pocket below it) traps the water inside
+        let lidded = format!(r#"{cup}, {{"shape": "box", "min": [0.2, 0.5], "max": [0.7, 0.6]}}"#);
+        let field = refusal(&tank_with(2, &lidded, ""), true);
+        assert!(field.starts_with("obstacles["), "{field}");
+        // a closed ring around a pocket, away from the walls
+        let ring = r#"{"shape": "box", "min": [0.3, 0.1], "max": [0.7, 0.16]}, {"shape": "box", "min": [0.3, 0.44], "max": [0.7, 0.5]},
+                      {"shape": "box", "min": [0.3, 0.1], "max": [0.36, 0.5]}, {"shape": "box", "min": [0.64, 0.1], "max": [0.7, 0.5]}"#;
+        assert!(refusal(&tank_with(2, ring, ""), true).starts_with("obstacles["));
+    }
+
+    #[test]
+    fn wall_sensors_sit_on_walls_and_sample_half_a_dp_inside() {
+        let body = r#"{"shape": "box", "min": [0.4, 0], "max": [0.6, 0.3]}"#;
+        let s = scene(&tank_with(2, body, ""));
+        // on the box's face x = 0.4, on the floor, just inside the left wall
+        let pts = [0.4, 0.1, 0.2, 0.0, 0.005, 0.3];
+        let q = wall_sensor_points::<Dim2>(&s, "gauges[0]", &pts).expect("on walls");
+        let want = [0.39, 0.1, 0.2, 0.01, 0.01, 0.3];
+        for (a, b) in q.iter().zip(want) {
+            assert!((a - b).abs() < 1e-6, "{q:?}");
+        }
+        let err = wall_sensor_points::<Dim2>(&s, "gauges[0]", &[0.4, 0.1, 0.2, 0.2]);
+        assert!(matches!(err, Err(Error::InvalidScene { field, .. }) if field == "gauges[0].points[1]"));
+        // on the floor under the box: near walls, but none faces the water
+        let under = wall_sensor_points::<Dim2>(&s, "gauges[0]", &[0.5, 0.0]);
+        assert!(matches!(under, Err(Error::InvalidScene { field, reason }) if field == "gauges[0].points[0]" && reason.contains("facing")));
+        let gauge = r#", "gauges": [{"type": "pressure", "name": "p", "points": [[0.2, 0.3]], "interval": 0.1, "on_wall": true}]"#;
+        assert!(Scene::from_json(&tank_with(2, body, gauge)).is_ok());
     }
 
     #[test]

@@ -210,6 +210,20 @@ pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
     fn plane_signed_distance(point: Self::V, normal: Self::V, p: Self::V) -> Real {
         Self::plane_projection(point, normal, p).signed_distance()
     }
+
+    /// A parry shape placed in the scene (its local frame's origin and, in 3D, rotation).
+    type Shape: Send + Sync;
+    /// A ball (a disc in 2D, the section of a horizontal cylinder across the width).
+    fn ball(centre: Self::V, radius: Real) -> Self::Shape;
+    /// A capsule: the points within `radius` of the segment `a b`.
+    fn capsule(a: Self::V, b: Self::V, radius: Real) -> Self::Shape;
+    /// A cylinder of `radius` whose axis runs from the centre of one end, `a`, to the other's,
+    /// `b` (3D only: the error says why not).
+    fn cylinder(a: Self::V, b: Self::V, radius: Real) -> std::result::Result<Self::Shape, String>;
+    /// The convex polygon through `vertices` (2D only; the error says why not).
+    fn convex_polygon(vertices: &[Self::V]) -> std::result::Result<Self::Shape, String>;
+    /// The nearest point of the placed shape's surface to `p`, by parry's point projection.
+    fn shape_projection(shape: &Self::Shape, p: Self::V) -> SurfacePoint<Self::V>;
 }
 
 /// The nearest point of a solid's surface to a query point `p`, as the offset from `p` to it,
@@ -235,6 +249,14 @@ impl<V: Vector> SurfacePoint<V> {
     }
 }
 
+/// A parry shape in its local frame, placed in the scene: local point `q` is at
+/// `origin + rotation q`.
+pub struct Placed<S: ?Sized, V, R> {
+    pub shape: Box<S>,
+    pub origin: V,
+    pub rotation: R,
+}
+
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Dim2;
 #[derive(Clone, Copy, Debug, Default)]
@@ -254,6 +276,13 @@ macro_rules! shape_queries {
             let proj = $parry::shape::HalfSpace::new(normal).project_local_point(p - point, false);
             SurfacePoint { offset: proj.point - (p - point), inside: proj.is_inside }
         }
+        fn ball(centre: Self::V, radius: Real) -> Self::Shape {
+            Placed { shape: Box::new($parry::shape::Ball::new(radius)), origin: centre, rotation: Default::default() }
+        }
+        fn capsule(a: Self::V, b: Self::V, radius: Real) -> Self::Shape {
+            let shape = $parry::shape::Capsule::new(a - a, b - a, radius);
+            Placed { shape: Box::new(shape), origin: a, rotation: Default::default() }
+        }
     };
 }
 
@@ -270,6 +299,28 @@ impl Dim for Dim2 {
     }
     fn mesh_projection(_: &(), _: DVec2) -> SurfacePoint<DVec2> {
         SurfacePoint { offset: DVec2::splat(Real::INFINITY), inside: false }
+    }
+
+    type Shape = Placed<dyn parry2d_f64::shape::Shape, DVec2, ()>;
+    fn cylinder(_: DVec2, _: DVec2, _: Real) -> std::result::Result<Self::Shape, String> {
+        Err("a cylinder needs dim = 3 (in 2D, a sphere is the section of a cylinder across the width)".to_string())
+    }
+    fn convex_polygon(vertices: &[DVec2]) -> std::result::Result<Self::Shape, String> {
+        let polygon = parry2d_f64::shape::ConvexPolygon::from_convex_hull(vertices)
+            .ok_or_else(|| "the vertices enclose no area".to_string())?;
+        if polygon.points().len() != vertices.len() {
+            return Err(format!(
+                "the polygon is not convex or repeats a vertex: its convex hull has {} of its {} vertices",
+                polygon.points().len(),
+                vertices.len()
+            ));
+        }
+        Ok(Placed { shape: Box::new(polygon), origin: DVec2::ZERO, rotation: () })
+    }
+    fn shape_projection(shape: &Self::Shape, p: DVec2) -> SurfacePoint<DVec2> {
+        let q = p - shape.origin;
+        let proj = shape.shape.project_local_point(q, false);
+        SurfacePoint { offset: proj.point - q, inside: proj.is_inside }
     }
 
     #[inline(always)]
@@ -315,6 +366,26 @@ impl Dim for Dim3 {
         let v: Vec<DVec3> = vertices.iter().map(|p| DVec3::from_slice(p)).collect();
         let flags = TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES;
         TriMesh::with_flags(v, triangles.to_vec(), flags).map_err(|e| format!("not a usable triangle mesh: {e:?}"))
+    }
+    type Shape = Placed<dyn parry3d_f64::shape::Shape, DVec3, glam::DQuat>;
+    fn cylinder(a: DVec3, b: DVec3, radius: Real) -> std::result::Result<Self::Shape, String> {
+        let axis = b - a;
+        let length = axis.length();
+        if !(length > 0.0) {
+            return Err("the axis' ends a and b must differ".to_string());
+        }
+        // parry's cylinder runs along its local y axis, centred on the origin
+        let rotation = glam::DQuat::from_rotation_arc(DVec3::Y, axis / length);
+        let shape = parry3d_f64::shape::Cylinder::new(0.5 * length, radius);
+        Ok(Placed { shape: Box::new(shape), origin: (a + b) * 0.5, rotation })
+    }
+    fn convex_polygon(_: &[DVec3]) -> std::result::Result<Self::Shape, String> {
+        Err("a polygon needs dim = 2 (in 3D, a closed mesh)".to_string())
+    }
+    fn shape_projection(shape: &Self::Shape, p: DVec3) -> SurfacePoint<DVec3> {
+        let q = shape.rotation.inverse() * (p - shape.origin);
+        let proj = shape.shape.project_local_point(q, false);
+        SurfacePoint { offset: shape.rotation * (proj.point - q), inside: proj.is_inside }
     }
     fn mesh_projection(mesh: &Self::Mesh, p: DVec3) -> SurfacePoint<DVec3> {
         use parry3d_f64::query::PointQuery;

@@ -68,8 +68,18 @@ pub enum GaugeSpec {
     /// Fluid pressure at fixed points: the Shepard-normalised kernel interpolation of the fluid
     /// particles' Tait pressures (the module's formula with `f_b = P(rho_b)`), as DualSPHysics
     /// measures pressure at a point; records per point the pressure [Pa] and the kernel volume
-    /// sum (below 0.5 the point is out of the water).
-    Pressure { name: String, points: Vec<Vec<Real>>, interval: Real },
+    /// sum (below 0.5 the point is out of the water). With `on_wall`, the points are sensors on
+    /// a wall or a body: each must lie within dp of the tank's floor or sides or of an
+    /// obstacle's surface (refused at the build otherwise), and is sampled moved along that
+    /// surface's normal to dp/2 inside the fluid (a wall particle's half spacing: the fluid's
+    /// first layer), and the record's points are those sampled.
+    Pressure {
+        name: String,
+        points: Vec<Vec<Real>>,
+        interval: Real,
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        on_wall: bool,
+    },
     /// Force and moment of the fluid on one obstacle (`obstacle`: its index in the scene's
     /// `obstacles`): the sum over the obstacle's wall particles of the pair forces of their
     /// fluid neighbours (see [`body_force`]), and its moment about `point`. Records the force

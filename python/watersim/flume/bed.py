@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import os
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -225,53 +224,10 @@ class MeshBeach(_Bed):
 
     def __post_init__(self) -> None:
         _set(self, "scale", _positive("beach.scale", self.scale))
-        offset = _finite_tuple("beach.offset", self.offset, 3)
-        if len(offset) != 3:
-            raise SceneError(f"beach.offset: needs 3 values (x, y, z), got {len(offset)}")
-        _set(self, "offset", offset)
-        if (self.path is None) == (self.vertices is None and self.triangles is None):
-            raise SceneError("beach.path: give either a mesh file (path) or vertices and "
-                             "triangles, not both nor neither")
-        if self.path is not None:
-            if not isinstance(self.path, (str, os.PathLike)) or not str(self.path).strip():
-                raise SceneError(f"beach.path: expected a file name, got {self.path!r}")
-            _set(self, "path", os.fspath(self.path))
-            raw, tri = meshbed.read_triangle_mesh(self.path, "beach.path")
-        else:
-            if self.vertices is None or self.triangles is None:
-                missing = "triangles" if self.triangles is None else "vertices"
-                raise SceneError(f"beach.{missing}: vertices and triangles go together")
-            raw = self._array("beach.vertices", self.vertices, np.float64)
-            tri_f = self._array("beach.triangles", self.triangles, np.float64)
-            if not np.all(np.isfinite(raw)):
-                raise SceneError("beach.vertices: values must be finite")
-            if not np.all(tri_f == np.round(tri_f)):
-                raise SceneError("beach.triangles: vertex indices must be whole numbers")
-            tri = tri_f.astype(np.int64)
-            meshbed.check_triangle_count(tri.shape[0], "beach.triangles", "the triangles given")
-            if tri.min() < 0 or tri.max() >= raw.shape[0]:
-                raise SceneError(f"beach.triangles: indices must lie in [0, {raw.shape[0] - 1}] "
-                                 f"(the vertices), got {int(tri.min())}..{int(tri.max())}")
-            # stored as plain tuples: a frozen, comparable builder that a scene file can write
-            _set(self, "vertices", tuple(tuple(float(v) for v in row) for row in raw))
-            _set(self, "triangles", tuple(tuple(int(i) for i in row) for row in tri))
-        pts = raw * self.scale + np.asarray(offset)
-        pts, tri = meshbed.merge_duplicate_vertices(pts, tri)
-        _set(self, "volume", meshbed.check_closed_mesh(pts, tri, self.source_field))
-        pts.setflags(write=False)
-        tri.setflags(write=False)
-        _set(self, "points", pts)
-        _set(self, "faces", tri)
-
-    @staticmethod
-    def _array(name: str, values: Any, dtype: type) -> npt.NDArray[Any]:
-        try:
-            arr: npt.NDArray[Any] = np.asarray(values, dtype=dtype)
-        except (TypeError, ValueError):
-            raise SceneError(f"{name}: expected rows of 3 numbers") from None
-        if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:
-            raise SceneError(f"{name}: expected rows of 3 numbers, got shape {arr.shape}")
-        return arr
+        mesh = meshbed.ClosedMesh.load("beach", self.path, self.vertices, self.triangles,
+                                       self.scale, self.offset)
+        for name in ("offset", "path", "vertices", "triangles", "points", "faces", "volume"):
+            _set(self, name, getattr(mesh, name))
 
     @property
     def source_field(self) -> str:

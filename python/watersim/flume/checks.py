@@ -56,3 +56,20 @@ def expected(classes: Sequence[type]) -> str:
     names = [c.__name__ for c in classes]
     article = "an" if names[0][0] in "AEIOU" else "a"
     return f"{article} {', '.join(names[:-1])} or {names[-1]}"
+
+
+def _models_of(obj: Any, field: str, classes: tuple[type, ...]) -> tuple[Any, ...]:
+    """The models of ``obj.field`` (one of them, or a sequence) as a tuple, each one of
+    ``classes``; set on ``obj`` and returned."""
+    value = getattr(obj, field)
+    if isinstance(value, classes):
+        value = (value,)
+    try:
+        models = tuple(value)
+    except TypeError:
+        raise SceneError(f"{field}: expected a sequence of {field}, got {value!r}") from None
+    for i, model in enumerate(models):
+        if not isinstance(model, classes):
+            raise SceneError(f"{field}[{i}]: expected {expected(classes)}, got {model!r}")
+    _set(obj, field, models)
+    return models

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 import re
 import typing
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -211,7 +211,7 @@ class _VelocityGauge(_Gauge):
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
-        records = VelocityRecord.by_name(raws, gauges.setup.flume.dim,
+        records = VelocityRecord.by_name(raws, gauges.setup.dim,
                                          window=cls.RECORDS == "windows")
         setattr(gauges, cls.RECORDS, records)
 
@@ -250,9 +250,9 @@ class ElevationGauge(_Gauge):
         self._check_name_and_interval("gauge")
 
     def y_in(self, scene: FlumeScene) -> float:
-        """y of the gauge line in a 3D flume [m] (the centre line when not given)."""
-        assert scene.flume.width is not None
-        return 0.5 * scene.flume.width if self.y is None else self.y
+        """y of the gauge line in a 3D scene [m] (the centre line when not given)."""
+        lo, hi = scene.extent(1)
+        return 0.5 * (lo + hi) if self.y is None else self.y
 
     def default_name(self, scene: FlumeScene, index: int) -> str:
         """``eta_x{x:.3f}`` (``_y{y:.3f}`` added in 3D)."""
@@ -266,20 +266,20 @@ class ElevationGauge(_Gauge):
         return [self.x]
 
     def check_in(self, scene: FlumeScene, label: str) -> None:
-        """Refuse a gauge line outside the flume, naming ``label`` (``gauges[i]``)."""
-        flume = scene.flume
-        if not -_TOL <= self.x <= flume.length + _TOL:
+        """Refuse a gauge line outside the flume (the tank), naming ``label`` (``gauges[i]``)."""
+        x0, x1 = scene.extent(0)
+        if not x0 - _TOL <= self.x <= x1 + _TOL:
             raise SceneError(
-                f"{label}.x: x = {self.x:g} m lies outside the flume [0, {flume.length:g}] m"
+                f"{label}.x: x = {self.x:g} m lies outside the {scene.PLACE} [{x0:g}, {x1:g}] m"
             )
         if scene.dim == 2 and self.y is not None:
             raise SceneError(f"{label}.y: only used in 3D; leave it unset in 2D")
         if scene.dim == 3 and self.y is not None:
-            assert flume.width is not None
-            if not -_TOL <= self.y <= flume.width + _TOL:
+            y0, y1 = scene.extent(1)
+            if not y0 - _TOL <= self.y <= y1 + _TOL:
                 raise SceneError(
-                    f"{label}.y: y = {self.y:g} m lies outside the flume width "
-                    f"[0, {flume.width:g}] m"
+                    f"{label}.y: y = {self.y:g} m lies outside the {scene.PLACE} width "
+                    f"[{y0:g}, {y1:g}] m"
                 )
 
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
@@ -293,7 +293,7 @@ class ElevationGauge(_Gauge):
         """``names``, ``x``, ``y``, ``still_depth``, ``t``, ``elevation_raw``, ``zero_offsets``
         and ``elevation``: every gauge on the first gauge's times."""
         setup = gauges.setup
-        depth = setup.flume.depth
+        depth = setup.level
         specs = {s["name"]: s for s in setup._gauge_specs()}
         gauges.names = tuple(str(r["name"]) for r in raws)
         gauges.x = np.array([specs[n]["position"][0] for n in gauges.names], dtype=np.float64)
@@ -477,16 +477,37 @@ class PressureGauge(_GaugeAtPoints):
     interpolation of the particles' pressures (their Tait law), as DualSPHysics measures pressure
     at a point; in still water, the hydrostatic ``rho0 g (depth - z)``.
 
+    With ``on_wall=True`` the points are pressure sensors on a wall or a body: each must lie
+    within dp of the tank's floor or sides or of a body's surface (the build refuses it
+    otherwise, naming ``gauges[i].points[j]``), and is read at the point moved along that
+    surface's normal to dp/2 inside the fluid (the first fluid layer; the pressure a wall
+    particle's own equation of state gives is noisier, and Adami's walls have none of their
+    own); the record's points are those read.
+
     Its record is ``FlumeGauges.records[name]``: ``t`` (n,) [s], ``points`` (p, dim) [m],
     ``pressure`` (n, p) [Pa] and ``kernel_sum`` (n, p) (below :data:`DRY_KERNEL_SUM` the point
     is out of the water and its pressure means nothing).
 
     Attributes:
         name: record name; default ``pressure{i}``.
+        on_wall: the points are sensors on a wall or body (see above).
     """
+
+    on_wall: bool = False
 
     TAG: ClassVar[str] = "pressure"
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not isinstance(self.on_wall, bool):
+            raise SceneError(f"gauge.on_wall: expected True or False, got {self.on_wall!r}")
+
+    def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
+        spec = super().to_core(scene, name, interval)
+        if self.on_wall:
+            spec["on_wall"] = True
+        return spec
 
     @classmethod
     def dataset_variables(cls, gauges: FlumeGauges) -> Variables:
@@ -575,12 +596,12 @@ class RunupGauge(_Gauge):
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
         """``runup_name``, ``runup_t``, ``runup_raw``, ``runup_offset`` and ``runup`` (zeroed on
         the reading at rest), None without a run-up gauge."""
-        depth = gauges.setup.flume.depth
         gauges.runup_offset = 0.0
         if not raws:
             gauges.runup_name, gauges.runup_t, gauges.runup, gauges.runup_raw = (
                 None, None, None, None)
             return
+        depth = gauges.setup.flume.depth
         gauges.runup_name = str(raws[0]["name"])
         gauges.runup_t = np.asarray(raws[0]["t"], dtype=float)
         raw = np.asarray(raws[0]["z"], dtype=np.float64) - depth
@@ -608,8 +629,8 @@ class RunupGauge(_Gauge):
 
 @dataclass(frozen=True)
 class ForceGauge(_Gauge):
-    """Force and moment of the fluid on a structure (a :class:`BoxStructure` or
-    :class:`ProfileStructure` of the scene, by name): the sum over the structure's wall
+    """Force and moment of the fluid on a body (one of a :class:`~watersim.Scene`'s ``bodies``
+    or of a flume's ``structures``, by name): the sum over the body's wall
     particles of the opposites of their fluid neighbours' pair forces (pressure and viscosity),
     and its moment about ``point``. In 2D per unit width: N/m and N m/m, the moment about the
     y axis (``M_y = r_z F_x - r_x F_z``); in 3D N and N m about x, y and z.
@@ -618,7 +639,7 @@ class ForceGauge(_Gauge):
     ``moment`` (n,) in 2D or (n, 3) in 3D.
 
     Attributes:
-        structure: the name of the structure measured.
+        structure: the name of the body (structure) measured.
         point: the point the moment is taken about [m], (x, z) or (x, y, z).
         name: record name; default the structure's name.
         interval: sampling interval [s]; default the scene's ``sample_interval``.
@@ -652,9 +673,9 @@ class ForceGauge(_Gauge):
     def check_in(self, scene: FlumeScene, label: str) -> None:
         """Refuse a structure the scene does not have, or a point of the wrong dimension."""
         if scene.obstacle_index(self.structure) is None:
-            known = ", ".join(repr(s.name) for s in scene.structures) or "none"
-            raise SceneError(f"{label}.structure: no structure named {self.structure!r} in the "
-                             f"scene's structures ({known})")
+            known = ", ".join(repr(n) for n in scene.body_names()) or "none"
+            raise SceneError(f"{label}.structure: no body named {self.structure!r} in the "
+                             f"scene's {scene.BODIES} ({known})")
         if len(self.point) != scene.dim:
             raise SceneError(f"{label}.point: needs {scene.dim} coordinates in {scene.dim}D, "
                              f"got {len(self.point)}")
@@ -745,11 +766,11 @@ class OvertoppingGauge(_Gauge):
         return [self.x]
 
     def check_in(self, scene: FlumeScene, label: str) -> None:
-        """Refuse a section outside the flume."""
-        length = scene.flume.length
-        if not 0.0 < self.x < length:
-            raise SceneError(f"{label}.x: x = {self.x:g} m lies outside the flume "
-                             f"(0, {length:g}) m")
+        """Refuse a section outside the flume (the tank)."""
+        x0, x1 = scene.extent(0)
+        if not x0 < self.x < x1:
+            raise SceneError(f"{label}.x: x = {self.x:g} m lies outside the {scene.PLACE} "
+                             f"({x0:g}, {x1:g}) m")
 
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         return {"type": self.TAG, "name": name, "x": self.x, "interval": interval}
@@ -805,6 +826,45 @@ GAUGE_TYPES: dict[str, type[_Gauge]] = {
     cls.TAG: cls for cls in typing.get_args(Gauge | RunupGauge)
 }
 """Every gauge class by its ``TAG`` (the core's gauge ``type``)."""
+
+
+def gauge_names(scene: FlumeScene, gauges: Sequence[_Gauge]) -> list[str]:
+    """Names of ``gauges`` (defaults by position or index, deduplicated with ``_2``...)."""
+    names: list[str] = []
+    taken = {g.name for g in gauges if g.name is not None}
+    counters: dict[type, int] = {}
+    for g in gauges:
+        if g.name is not None:
+            names.append(g.name)
+            continue
+        index = counters.get(type(g), 0)
+        counters[type(g)] = index + 1
+        base = g.default_name(scene, index)
+        name, k = base, 2
+        while name in taken:
+            name, k = f"{base}_{k}", k + 1
+        taken.add(name)
+        names.append(name)
+    return names
+
+
+def check_gauges(scene: FlumeScene, gauges: Sequence[_Gauge]) -> set[str]:
+    """Each gauge checked in ``scene`` (``gauges[i]`` named), names unique; returns the names."""
+    names: set[str] = set()
+    for i, (g, name) in enumerate(zip(gauges, gauge_names(scene, gauges), strict=True)):
+        g.check_in(scene, f"gauges[{i}]")  # type: ignore[attr-defined]
+        if name in names:
+            raise SceneError(f"gauges[{i}].name: duplicate gauge name {name!r}")
+        names.add(name)
+    return names
+
+
+def gauge_specs(scene: FlumeScene, gauges: Sequence[_Gauge], default_interval: float
+                ) -> list[dict[str, Any]]:
+    """The core's JSON of ``gauges`` (``default_interval`` [s] where a gauge gives none)."""
+    return [g.to_core(scene, name, default_interval if g.interval is None  # type: ignore[attr-defined]
+                      else g.interval)
+            for g, name in zip(gauges, gauge_names(scene, gauges), strict=True)]
 
 
 def elevation_gauges_between(

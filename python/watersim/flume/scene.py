@@ -18,12 +18,20 @@ from .._core import SceneError
 from ..checks import _positive
 from ..scenes import SceneBuilder
 from .bed import BEACH_TYPES, Beach, DampingZone, _bed, _shoreline_segment
-from .checks import _TOL, _set, expected
-from .gauges import RUNUP_OFFSET_DP, SCENE_GAUGE_TYPES, Gauge, RunupGauge
+from .checks import _TOL, _models_of, _set, expected
+from .gauges import (
+    RUNUP_OFFSET_DP,
+    SCENE_GAUGE_TYPES,
+    Gauge,
+    RunupGauge,
+    check_gauges,
+    gauge_names,
+    gauge_specs,
+)
 from .lattice import MAX_PARTICLES, _lattice_error, _whole, lattice_dp
 from .paddles import PADDLE_TYPES, Paddle, PaddleLaw, Piston
 from .simulation import FlumeSimulation
-from .structures import STRUCTURE_TYPES, Structure
+from .structures import STRUCTURE_TYPES, Structure, check_structure
 from .waves import WAVE_TYPES, Wave
 
 MODEL_TYPES: tuple[type, ...] = (*BEACH_TYPES, *WAVE_TYPES, *PADDLE_TYPES, *SCENE_GAUGE_TYPES,
@@ -154,8 +162,9 @@ class FlumeScene(SceneBuilder):
         paddle: :class:`Piston` (default) or :class:`Flap`.
         gauges: gauge objects, of any class of :data:`~watersim.flume.gauges.Gauge` (every
             gauge but the run-up gauge).
-        structures: fixed solid bodies in the flume, each named (a :class:`BoxStructure` or
-            a :class:`ProfileStructure`): the core's obstacles after the beach.
+        structures: fixed solid bodies in the flume (any body of :mod:`watersim.bodies` but the
+            half-space, or a :class:`ProfileStructure`), named for a force gauge: the core's
+            obstacles after the beach.
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
@@ -187,10 +196,10 @@ class FlumeScene(SceneBuilder):
             raise SceneError(f"wave: expected {expected(WAVE_TYPES)}, got {self.wave!r}")
         if not isinstance(self.paddle, PADDLE_TYPES):
             raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
-        self._as_tuple_of("gauges", SCENE_GAUGE_TYPES)
+        _models_of(self, "gauges", SCENE_GAUGE_TYPES)
         names: set[str] = set()
-        for i, s in enumerate(self._as_tuple_of("structures", STRUCTURE_TYPES)):
-            if s.name in names:
+        for i, s in enumerate(_models_of(self, "structures", STRUCTURE_TYPES)):
+            if s.name is not None and s.name in names:
                 raise SceneError(f"structures[{i}].name: duplicate structure name {s.name!r}")
             names.add(s.name)
         if self.runup is not None and not isinstance(self.runup, (bool, RunupGauge)):
@@ -223,21 +232,27 @@ class FlumeScene(SceneBuilder):
 
     # -- checks ---------------------------------------------------------------------------------
 
-    def _as_tuple_of(self, field: str, classes: tuple[type, ...]) -> tuple[Any, ...]:
-        """The models of ``field`` (one of them, or a sequence) as a tuple, each one of
-        ``classes``; set on the scene and returned."""
-        value = getattr(self, field)
-        if isinstance(value, classes):
-            value = (value,)
-        try:
-            models = tuple(value)
-        except TypeError:
-            raise SceneError(f"{field}: expected a sequence of {field}, got {value!r}") from None
-        for i, model in enumerate(models):
-            if not isinstance(model, classes):
-                raise SceneError(f"{field}[{i}]: expected {expected(classes)}, got {model!r}")
-        _set(self, field, models)
-        return models
+    PLACE: ClassVar[str] = "flume"
+    """What the gauges' messages call the scene's extent."""
+    BODIES: ClassVar[str] = "structures"
+    """The field holding the scene's bodies, for messages."""
+
+    def extent(self, axis: int) -> tuple[float, float]:
+        """``(low, high)`` [m] of the water's extent along horizontal ``axis`` (0: x, from the
+        paddle at rest to the far wall; 1: y, across a 3D flume)."""
+        if axis == 0:
+            return 0.0, self.flume.length
+        assert self.flume.width is not None
+        return 0.0, self.flume.width
+
+    @property
+    def level(self) -> float:
+        """The level elevations are measured from [m above the floor]: the still water's."""
+        return self.flume.depth
+
+    def body_names(self) -> list[str]:
+        """The names of the named structures."""
+        return [s.name for s in self.structures if s.name is not None]
 
     def obstacle_index(self, structure: str) -> int | None:
         """The core's index of the obstacle of the structure named ``structure`` (the beach,
@@ -315,13 +330,8 @@ class FlumeScene(SceneBuilder):
                     f"damping.length: the zone covers the whole flume (it starts at x = {x0:g} m)"
                 )
         for i, structure in enumerate(self.structures):
-            structure.check_in(self, f"structures[{i}]")
-        names: set[str] = set()
-        for i, (g, name) in enumerate(zip(self.gauges, self._gauge_names(), strict=True)):
-            g.check_in(self, f"gauges[{i}]")
-            if name in names:
-                raise SceneError(f"gauges[{i}].name: duplicate gauge name {name!r}")
-            names.add(name)
+            check_structure(structure, self, f"structures[{i}]")
+        names = check_gauges(self, self.gauges)
         runup = self.runup_gauge
         if runup is not None:
             if runup.name in names:
@@ -571,22 +581,7 @@ class FlumeScene(SceneBuilder):
 
     def _gauge_names(self) -> list[str]:
         """Names of :attr:`gauges` (defaults by position or index, deduplicated with ``_2``...)."""
-        names: list[str] = []
-        taken = {g.name for g in self.gauges if g.name is not None}
-        counters: dict[type, int] = {}
-        for g in self.gauges:
-            if g.name is not None:
-                names.append(g.name)
-                continue
-            index = counters.get(type(g), 0)
-            counters[type(g)] = index + 1
-            base = g.default_name(self, index)
-            name, k = base, 2
-            while name in taken:
-                name, k = f"{base}_{k}", k + 1
-            taken.add(name)
-            names.append(name)
-        return names
+        return gauge_names(self, self.gauges)
 
     @property
     def runup_gauge(self) -> RunupGauge | None:
@@ -638,11 +633,8 @@ class FlumeScene(SceneBuilder):
 
     def _gauge_specs(self) -> list[dict[str, Any]]:
         """The gauges in the core's JSON form (runup last)."""
-        specs: list[dict[str, Any]] = []
         default = float(self.sample_interval)  # type: ignore[arg-type]
-        for g, name in zip(self.gauges, self._gauge_names(), strict=True):
-            interval = default if g.interval is None else g.interval
-            specs.append(g.to_core(self, name, interval))
+        specs = gauge_specs(self, self.gauges, default)
         runup = self.runup_gauge
         if runup is not None:
             interval = default if runup.interval is None else runup.interval
@@ -665,7 +657,7 @@ class FlumeScene(SceneBuilder):
         obstacles: list[dict[str, Any]] = []
         if flume.beach is not None:
             obstacles.append(flume.beach.to_core(self.bed_profile))
-        obstacles.extend(s.to_core(self) for s in self.structures)
+        obstacles.extend(s.to_core() for s in self.structures)
         # the surface read two dp in front of the face: clear of the paddle's own particles
         probe = 2.0 * float(self.dp) if self.absorbs else None  # type: ignore[arg-type]
         paddle = self.paddle.to_core(self.law, flume.depth, probe, self.g)

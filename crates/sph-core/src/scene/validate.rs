@@ -67,6 +67,35 @@ fn check_obstacle(f: &str, o: &Obstacle, dim: usize) -> Result<()> {
         Obstacle::Box { min, max } => {
             check_box(f, &BoxSpec { min: min.clone(), max: max.clone() }, dim)?
         }
+        Obstacle::Sphere { centre, radius } => {
+            check_vector(&format!("{f}.centre"), centre, dim)?;
+            check_positive(&format!("{f}.radius"), *radius)?;
+        }
+        Obstacle::Cylinder { a, b, radius } | Obstacle::Capsule { a, b, radius } => {
+            if dim != 3 && matches!(o, Obstacle::Cylinder { .. }) {
+                return Err(Error::invalid(f, "a cylinder needs dim = 3 (in 2D a sphere is the section of one across the width)"));
+            }
+            check_vector(&format!("{f}.a"), a, dim)?;
+            check_vector(&format!("{f}.b"), b, dim)?;
+            check_positive(&format!("{f}.radius"), *radius)?;
+            if a == b && matches!(o, Obstacle::Cylinder { .. }) {
+                return Err(Error::invalid(format!("{f}.b"), "the axis' ends a and b must differ"));
+            }
+        }
+        Obstacle::Polygon { vertices } => {
+            if dim != 2 {
+                return Err(Error::invalid(f, "a polygon needs dim = 2 (in 3D, a closed mesh)"));
+            }
+            if vertices.len() < 3 {
+                return Err(Error::invalid(format!("{f}.vertices"), format!("needs at least 3 vertices, got {}", vertices.len())));
+            }
+            for (j, v) in vertices.iter().enumerate() {
+                check_vector(&format!("{f}.vertices[{j}]"), v, 2)?;
+            }
+            let points: Vec<glam::DVec2> = vertices.iter().map(|v| glam::DVec2::new(v[0], v[1])).collect();
+            <crate::math::Dim2 as crate::math::Dim>::convex_polygon(&points)
+                .map_err(|e| Error::invalid(format!("{f}.vertices"), e))?;
+        }
         Obstacle::Mesh { vertices, triangles } => {
             if dim != 3 {
                 return Err(Error::invalid(f, "a triangle mesh needs dim = 3"));
@@ -83,6 +112,7 @@ fn check_obstacle(f: &str, o: &Obstacle, dim: usize) -> Result<()> {
                     format!("{t:?} indexes past the {} vertices", vertices.len()),
                 ));
             }
+            check_closed(&format!("{f}.triangles"), vertices, triangles)?;
         }
         Obstacle::Profile { x, z } => {
             if x.len() != z.len() || x.len() < 2 {
@@ -106,6 +136,51 @@ fn check_obstacle(f: &str, o: &Obstacle, dim: usize) -> Result<()> {
                 return Err(Error::invalid(format!("{f}.normal"), "must not be the zero vector"));
             }
         }
+    }
+    Ok(())
+}
+
+/// A closed, consistently oriented surface: every edge (between vertices merged by position)
+/// is shared by exactly two triangles that run along it in opposite directions. Without that
+/// the mesh has no inside, and parry's inside test (pseudo-normals) answers at random.
+fn check_closed(f: &str, vertices: &[Vec<Real>], triangles: &[[u32; 3]]) -> Result<()> {
+    use std::collections::HashMap;
+    let mut merged: HashMap<[u64; 3], usize> = HashMap::new();
+    let id: Vec<usize> = vertices
+        .iter()
+        .map(|v| {
+            let key = [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()];
+            let n = merged.len();
+            *merged.entry(key).or_insert(n)
+        })
+        .collect();
+    // directed edge -> how many triangles run along it
+    let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
+    for (j, t) in triangles.iter().enumerate() {
+        let v = t.map(|i| id[i as usize]);
+        if v[0] == v[1] || v[1] == v[2] || v[0] == v[2] {
+            return Err(Error::invalid(format!("{f}[{j}]"), format!("triangle {t:?} has two vertices at the same point")));
+        }
+        for k in 0..3 {
+            *edges.entry((v[k], v[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    let mut open = 0usize;
+    let mut twisted = 0usize;
+    for (&(a, b), &n) in &edges {
+        match (n, edges.get(&(b, a)).copied().unwrap_or(0)) {
+            (1, 1) => {}
+            (_, 0) => open += 1,
+            _ => twisted += 1,
+        }
+    }
+    if open > 0 || twisted > 0 {
+        return Err(Error::invalid(
+            f,
+            format!(
+                "the mesh is not a closed, consistently oriented surface: {open} edges belong to one triangle only (holes), {twisted} to triangles running the same way or to more than two"
+            ),
+        ));
     }
     Ok(())
 }
@@ -226,13 +301,30 @@ impl Scene {
     fn validate_geometry(&self) -> Result<()> {
         let dim = self.dim;
         check_box("tank", &self.tank, dim)?;
+        // a thousandth of dp: no lattice site tells it apart, and a mesh read from f32 (binary
+        // STL) rounds its vertices by more than 1e-9 dp
+        let tol = 1e-3 * self.dp;
         for (i, o) in self.obstacles.iter().enumerate() {
-            check_obstacle(&format!("obstacles[{i}]"), o, dim)?;
+            let f = format!("obstacles[{i}]");
+            check_obstacle(&f, o, dim)?;
+            if let Some((lo, hi)) = o.bounds(dim) {
+                // the top is open: a body may rise above the walls (DualSPHysics' CaseDambreak
+                // column does)
+                let out = |k: usize| lo[k] < self.tank.min[k] - tol || (k + 1 < dim && hi[k] > self.tank.max[k] + tol);
+                if let Some(k) = (0..dim).find(|&k| out(k)) {
+                    return Err(Error::invalid(
+                        f,
+                        format!(
+                            "the body spans [{}, {}] along axis {k}, outside the tank [{}, {}]",
+                            lo[k], hi[k], self.tank.min[k], self.tank.max[k]
+                        ),
+                    ));
+                }
+            }
         }
         if self.fluid.is_empty() {
             return Err(Error::invalid("fluid", "at least one fluid box is needed"));
         }
-        let tol = 1e-9 * self.dp;
         for (i, b) in self.fluid.iter().enumerate() {
             let f = format!("fluid[{i}]");
             check_box(&f, b, dim)?;

@@ -131,6 +131,11 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
             }
         }
         solver.gauges = solver.scene.gauges.iter().map(|g| GaugeRecord::new(g, D::DIM)).collect();
+        for (i, (spec, rec)) in solver.scene.gauges.iter().zip(&mut solver.gauges).enumerate() {
+            if let GaugeSpec::Pressure { on_wall: true, .. } = spec {
+                rec.points = geometry::wall_sensor_points::<D>(&solver.scene, &format!("gauges[{i}]"), &rec.points)?;
+            }
+        }
         solver.move_boundaries(0.0);
         // Fixed walls never move: sort them once.
         solver.sort_group(GROUP_FIXED);
