@@ -293,7 +293,8 @@ class Shifting(Option):
     a free-surface ramp on the particle divergence) or the delta-plus-SPH shifting
     (``model="delta_plus"``: Sun et al. 2017, ``dr = -A h U_max dt sum [1 + R (W/W(dp))^4]
     grad W V``, no shift on the free surface found from the renormalisation matrix, only
-    along the surface next to it).
+    along the surface next to it). ``delta_plus`` raises a flume's mean level (by 1.1 H over
+    ten wavelengths in ``flume2d-long`` at H/dp 5, docs/physics-options.md): not for flumes yet.
 
     Attributes:
         model: ``"lind"`` or ``"delta_plus"``.
