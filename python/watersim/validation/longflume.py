@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -95,10 +95,14 @@ def nonlinear_wavelength() -> float:
 
 
 def run_long_flume(case: Case, res: float, quick: bool, progress: bool,
-                   settings: Mapping[str, str] | None = None) -> dict[str, Any]:
+                   settings: Mapping[str, str] | None = None, *,
+                   flume_run: Callable[..., Any], phases: Callable[..., dict[str, float]],
+                   mean_level_drift: Callable[..., Any]) -> dict[str, Any]:
     """Run flume2d-long at resolution ``res`` (H/dp) and measure it (``quick`` changes
-    nothing: every metric needs the wave at 10 L)."""
-    from .cases import _flume_run, _mean_level_drift, _phases
+    nothing: every metric needs the wave at 10 L). ``flume_run``, ``phases`` and
+    ``mean_level_drift`` are the flume cases' runner and measures (``validation.cases`` binds
+    them; taken as arguments so this module does not import the one that imports it)."""
+    _flume_run, _phases, _mean_level_drift = flume_run, phases, mean_level_drift
 
     dp = case.dp(res)
     scene, notes = long_flume_scene(dp, settings)
