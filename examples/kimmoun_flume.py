@@ -20,9 +20,9 @@ the highest particle.
 
 Writes to ``--out``: gauges.csv, analysis.json, records.npz, summary.json and
 fig4_toe.png, fig5_breaking_gauges.png, fig8_envelopes.png, fig9_runup.png,
-fig10_phase_averages.png. Seed values drawn as references are quoted from the seed's text
-(seed 001 = /work/shared/seeds/001_*.txt, Roselli et al.), never from its plotted curves, which
-are not available as data.
+fig10_phase_averages.png. Seed values drawn as references are quoted from the text of seed
+001 (Roselli et al., the project's reference sheet of the experiment; python/watersim/data/
+SOURCES.md), never from its plotted curves, which are not available as data.
 """
 
 from __future__ import annotations

@@ -331,6 +331,9 @@ def test_figures_order_gauges_along_the_flume_with_targets_windows_and_units(
     assert any("measured" in label for label in labels)
     assert any("linear theory" in label for label in labels)
     assert heights.get_ylabel() == "wave height [m]" and "[m]" in levels.get_ylabel()
+    theory = max(float(np.nanmax(line.get_ydata())) for line in heights.lines
+                 if "theory" in line.get_label())
+    assert heights.get_ylim()[1] >= 1.1 * theory  # not on the axes' top edge
     assert figures["runup.png"].axes[0].get_ylabel() == "run-up above SWL [m]"
 
 
@@ -387,6 +390,40 @@ def test_did_you_mean_on_a_mistyped_case_or_key(tmp_path: Path) -> None:
     assert_clean_failure(proc, "wave.hieght", "did you mean 'height'?")
     proc = run_cli("run", "flume2d", "--set", "qqq=1")
     assert "did you mean" not in proc.stderr  # nothing close: no guess
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["validate", "flume2dd"], "did you mean 'flume2d'?"),
+    (["bench", "--case", "dambreak2"], "did you mean 'dambreak2d'?"),
+    (["run", "examples/flume2d.tom"], "did you mean 'examples/flume2d.toml'?"),
+    (["show-scene", "flume2d", "--set", "Dp=0.02"], "did you mean 'dp'?"),
+    (["resume", "runs/no-such-run"], "runs/no-such-run: no such run folder"),
+])
+def test_did_you_mean_on_validate_bench_paths_and_case(
+    argv: list[str], needle: str, capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(ROOT)
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and needle in err, err
+
+
+def test_a_steep_slope_on_a_built_in_case_is_warned_of_and_builds(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    """``--set beach.slope=5`` (meaning 1:5) on kimmoun2d: the warning says what slope means;
+    the case's velocity verticals stand on the floor before the toe, not 11 m under it."""
+    with pytest.warns(ws.flume.SteepSlopeWarning):
+        scene = cli.builder_from_args("kimmoun2d", ["beach.slope=5"])
+    assert isinstance(scene, FlumeScene)
+    probes = [g for g in scene.gauges if isinstance(g, ws.VelocityProbe)]
+    assert probes and min(z for g in probes for _, z in g.points) > 0.0
+    # a warning is printed before a refusal it may explain
+    assert cli.main(["run", "kimmoun2d", "--set", "beach.slope=5", "--set", "until=-1",
+                     "--out", str(tmp_path / "k")]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert "SteepSlopeWarning" in err[0] and "until" in err[-1], err
 
 
 def test_paddle_type_switches_the_law_of_a_built_in_flume_case() -> None:

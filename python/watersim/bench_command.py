@@ -26,10 +26,10 @@ from .bench_against import cmd_against
 from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .builtin_cases import SET_HELP, builder_from_args
-from .errors import CliError
+from .errors import CliError, did_you_mean
 from .numerics import FORCE_PRECISIONS
 from .runrecord import error_record, rayon_threads
-from .scenefile import is_scene_file
+from .scenefile import is_scene_file, scene_files_near
 from .simulation import Simulation
 
 __all__ = ["BENCH_CASES", "add_parser", "cmd_bench"]
@@ -197,8 +197,9 @@ def cmd_bench(args: argparse.Namespace) -> int:
         if getattr(args, option) is None:
             setattr(args, option, value)
     if args.case not in BENCH_CASES and not is_scene_file(args.case):
-        raise CliError(f"--case: unknown case {args.case!r}; valid: {', '.join(BENCH_CASES)} "
-                       "or a scene file FILE.toml")
+        raise CliError(f"--case: unknown case {args.case!r}"
+                       f"{did_you_mean(args.case, [*BENCH_CASES, *scene_files_near(args.case)])}; "
+                       f"valid: {', '.join(BENCH_CASES)} or a scene file FILE.toml")
     if args.particles is not None and args.particles < 10:
         raise CliError(f"--particles: must be at least 10, got {args.particles}")
     if args.steps < 1 or args.warmup < 0:

@@ -17,7 +17,7 @@ from . import numerics as nm
 from . import overrides
 from .errors import CliError, did_you_mean
 from .flume_cases import FLUME_CASES, flume_builder, flume_settable_keys
-from .scenefile import is_scene_file
+from .scenefile import is_scene_file, scene_files_near
 from .scenefile import load as load_scene_file
 from .scenes import DamBreak, SceneBuilder, Tank
 
@@ -63,8 +63,9 @@ def builder_from_args(case: str, settings: Sequence[str]) -> SceneBuilder:
     if case in FLUME_CASES:
         return flume_builder(case, {o.key: o.text for o in overrides.parse(settings)})
     if case not in CASES:
-        raise CliError(f"case: unknown case {case!r}{did_you_mean(case, ALL_CASES)}; valid "
-                       f"cases: {', '.join(ALL_CASES)} or a scene file FILE.toml")
+        hint = did_you_mean(case, [*ALL_CASES, *scene_files_near(case)])
+        raise CliError(f"case: unknown case {case!r}{hint}; valid cases: {', '.join(ALL_CASES)} "
+                       "or a scene file FILE.toml")
     cls, fixed = CASES[case]
     valid = settable_keys(case)
     hints = typing.get_type_hints(cls)

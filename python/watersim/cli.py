@@ -478,12 +478,15 @@ a core error); a stability monitor's stop exits with 1."""
 def cmd_run(args: argparse.Namespace) -> int:
     """``watersim run``: run a case or a scene file, write summary.json, log.jsonl (and
     front.csv for dam breaks, snapshots when asked)."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        scene = _run_input(args)
-    notes = [f"{w.category.__name__}: {w.message}" for w in caught]
-    for note in notes:
-        print(f"watersim: warning: {note}", file=sys.stderr)
+    caught: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:  # type: ignore[assignment]
+            warnings.simplefilter("always")
+            scene = _run_input(args)
+    finally:  # a warning comes before the refusal it may explain (a beach at slope = 5)
+        notes = [f"{w.category.__name__}: {w.message}" for w in caught]
+        for note in notes:
+            print(f"watersim: warning: {note}", file=sys.stderr)
     out, snapshot_every, progress = _run_options(args, scene)
     if isinstance(scene.builder, FlumeScene):
         return _run_flume(args, scene, notes, out, snapshot_every, progress)

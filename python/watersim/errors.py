@@ -16,6 +16,11 @@ class CliError(Exception):
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
     """``" (did you mean 'x'?)"`` for the choice closest to a mistyped ``word`` (difflib's
-    ratio of at least 0.6), or ``""`` when none is close."""
-    close = difflib.get_close_matches(word, list(choices), n=1)
+    ratio of at least 0.6, or a choice that differs only in case: ``Dp`` for ``dp``), or ``""``
+    when none is close."""
+    options = list(choices)
+    close = difflib.get_close_matches(word, options, n=1)
+    if not close:
+        lowered = {option.lower(): option for option in reversed(options)}
+        close = [lowered[c] for c in difflib.get_close_matches(word.lower(), list(lowered), n=1)]
     return f" (did you mean {close[0]!r}?)" if close else ""

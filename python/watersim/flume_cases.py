@@ -245,7 +245,7 @@ def case_kimmoun2d(s: _Settings) -> FlumeScene:
     # 1.05 in its SPH, 240 cm before the shoreline) and after the splash-up (142 cm)
     for before_shore in (2.40, 1.42):
         x = round(shore - before_shore, 3)
-        bed = (x - beach.toe) * beach.slope
+        bed = max(0.0, (x - beach.toe) * beach.slope)  # off the slope with a steep beach
         zs = np.linspace(bed + 0.5 * num["dp"], depth + wave.height, 12)
         gauges.append(VelocityProbe(points=tuple((x, round(float(z), 4)) for z in zs),
                                     name=f"u_x{x:.3f}"))

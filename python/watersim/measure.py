@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import csv
 import math
+import numbers
 from dataclasses import asdict, dataclass
 from importlib import resources
 from typing import Any
@@ -306,10 +307,13 @@ def front_error(
             the tank length: a front cannot go past the far wall).
 
     Raises:
-        ValueError: inputs of different lengths, non-increasing times, or no reference point in
-            the simulated time range.
+        ValueError: inputs of different lengths, non-increasing times, a ``g`` that is not a
+            positive number, or no reference point in the simulated time range.
     """
     ts, xs = checked_series(t, x_front, "x_front", width)
+    if isinstance(g, bool) or not isinstance(g, numbers.Real) or not 0.0 < g < math.inf:
+        raise ValueError(f"g: must be a positive number [m/s^2], got {g!r} (a builder's "
+                         "resolved value is its .g)")
     ref = load_martin_moyce(reference) if isinstance(reference, str) else reference
     t_ref, x_ref = ref.dimensional(width, g)
     measured = (t_ref > 0.0) & (t_ref <= ts[-1] * (1.0 + 1e-12)) & (t_ref >= ts[0])

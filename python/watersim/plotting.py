@@ -402,7 +402,12 @@ def _plot_heights(ax: Any, analysis: dict[str, Any], wave: _Wave, xs: np.ndarray
     if short:
         ax.plot(short, np.zeros(len(short)), "kx", ms=7, label="window too short: no statistics")
     ax.set_ylabel("wave height [m]")
-    ax.set_ylim(bottom=0.0)
+    drawn = [h for line in ax.get_lines() for h in np.asarray(line.get_ydata(), dtype=float)]
+    top = max((h for h in drawn if math.isfinite(h)), default=0.0)
+    if top > 0.0:  # the target and theory lines inside the axes, not on their top edge
+        ax.set_ylim(0.0, 1.15 * top)
+    else:
+        ax.set_ylim(bottom=0.0)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
 

@@ -350,6 +350,8 @@ def reopen(directory: str | Path, until: float | None = None) -> Reopened:
     """
     folder = Path(directory)
     scene_path = folder / SCENE_FILE
+    if not folder.is_dir():
+        raise RunDirError(f"{folder}: no such run folder")
     if not scene_path.is_file():
         raise RunDirError(f"{folder}: not a watersim run folder (no {SCENE_FILE}; runs of "
                           "watersim before checkpoints cannot be resumed)")

@@ -148,6 +148,18 @@ def is_scene_file(arg: str) -> bool:
     return arg.lower().endswith(".toml")
 
 
+def scene_files_near(arg: str, limit: int = 200) -> list[str]:
+    """The scene files in the folder a mistyped case argument points into, spelt as the user
+    would type them (``examples/flume2d.toml`` for ``examples/flume2d.tom``): the candidates of
+    a "did you mean" hint (at most ``limit``, so that a huge folder costs nothing)."""
+    folder = Path(arg).parent
+    try:
+        names = sorted(p.name for _, p in zip(range(limit), folder.glob("*.toml"), strict=False))
+    except OSError:
+        return []
+    return [str(folder / name) for name in names]
+
+
 # ------------------------------------------------------------------------------------------------
 # type hints
 

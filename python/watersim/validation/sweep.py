@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from .._jsonio import write_json_atomic
+from ..errors import did_you_mean
 from ..overrides import parse as parse_items
 from .cases import CASES, run_case
 
@@ -71,8 +72,8 @@ def plan(cases: Sequence[str], resolutions: Sequence[float] | None, quick: bool
     names = list(cases) or list(CASES)
     for name in names:
         if name not in CASES:
-            raise ValidateError(f"case: unknown validation case {name!r}; valid cases: "
-                                f"{', '.join(CASES)}")
+            raise ValidateError(f"case: unknown validation case {name!r}"
+                                f"{did_you_mean(name, CASES)}; valid cases: {', '.join(CASES)}")
     tasks = []
     for name in dict.fromkeys(names):
         case = CASES[name]
