@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from conftest import run_cli
-from watersim import Simulation
+from watersim import Simulation, _core
 from watersim.bench_cases import DSPH_CASES, dsph_scene
 
 
@@ -41,6 +42,20 @@ def test_settings_are_dualsphysics_own() -> None:
     assert (piston["kernel"], piston["coefh"], piston["diffusion"]["model"]) == (
         "wendland", 1.2, "none")
     assert piston["integrator"]["scheme"] == "symplectic" and piston["paddle"]["kind"] == "piston"
+
+
+def test_the_piston_case_is_wallregawas2s_fluid_and_walls() -> None:
+    """GenCase's WallRegAwas2 at dp = 6 mm (commit cedbb95b): 21,457 fluid particles in 499
+    columns from x = 0.008 m and 43 rows one dp above the floor; a flat tank with a far wall, 0.6
+    m high; a piston with its AWAS. (The paddle is one layer thick here, four there.)"""
+    scene = dsph_scene("dsph-piston2d")
+    sim = _core.Simulation(json.dumps(scene))
+    assert sim.n_fluid == 21_457
+    assert scene["obstacles"] == [] and scene["tank"]["max"][1] == pytest.approx(0.6)
+    assert scene["tank"]["min"][0] == pytest.approx(-34 * 0.006)
+    assert "absorption" in scene["paddle"] and scene.get("damping") is None
+    x = np.asarray(sim.positions)[np.asarray(sim.kinds) == 0]
+    assert x.min(axis=0) == pytest.approx([0.5 * 0.006, 0.5 * 0.006])
 
 
 def test_bench_prints_no_ratio_it_did_not_measure() -> None:

@@ -162,8 +162,9 @@ def test_validation_flume_cases_fill_their_depth_at_every_resolution(name: str) 
 
 
 def test_the_piston_bench_keeps_dualsphysics_dp_and_water() -> None:
-    # DualSPHysics' dp (6 mm) and the 44 layers its 0.266 m box holds: 0.264 m of water
+    # WallRegAwas2's GenCase output at dp = 6 mm: 43 rows of fluid (z = 0.008 to 0.260 m, one dp
+    # above the floor's particles), 499 columns
     scene = dsph_scene("dsph-piston2d")
     dp = scene["dp"]
-    assert dp == 0.006 and lattice_layers(0.266, dp) == 44
-    assert scene["fluid"][0]["max"][1] == pytest.approx(44 * 0.006, abs=1e-12)
+    assert dp == 0.006
+    assert scene["fluid"][0]["max"] == pytest.approx([499 * 0.006, 43 * 0.006], abs=1e-12)

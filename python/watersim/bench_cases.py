@@ -20,9 +20,10 @@ state in f64). ``watersim bench --set force_precision=f64`` times WaterSim's def
 ``dsph-dambreak2d``    ``CaseDambreakVal2D``: column 1 x 2 m in a 4 m tank, dp 0.01 m, 21,001
                        particles (20,000 fluid); Wendland, coefh 1.0; alpha 0.02; Fourtakas delta
                        0.1; Verlet; CFL 0.2; coefsound 20.
-``dsph-piston2d``      2D piston flume: depth 0.266 m (44 layers of dp: 0.264 m of water, as in
-                       DualSPHysics), H 0.1 m, T 1.3 s, dp 0.006 m, DualSPHysics 22,492
-                       particles; Wendland, coefh 1.2; alpha 0.01; no diffusion; Symplectic.
+``dsph-piston2d``      ``WallRegAwas2``: piston, regular waves H 0.1 m, T 1.3 s, flat tank 3 m
+                       long, 0.258 m of water (43 rows of dp 0.006 m), 22,492 particles
+                       (21,457 fluid); Wendland, coefh 1.2; alpha 0.01; no diffusion;
+                       Symplectic; CFL 0.2; coefsound 20.
 =====================  =========================================================================
 
 No DualSPHysics timing is written here: a ratio to DualSPHysics is only what ``watersim bench
@@ -33,6 +34,7 @@ scaling check).
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -109,35 +111,46 @@ def dambreak2d(dp: float) -> dict[str, Any]:
     )
 
 
-PISTON_LENGTH = 1.565
-"""Length [m] of the piston flume's flat bed in front of its beach, chosen so that dp = 6 mm
-gives DualSPHysics' 22,492 particles (the example's exact bathymetry is not given; particle
-count, depth, wave, kernel and numerics are)."""
+PISTON_FLUID_COLUMNS = 499
+"""Fluid columns of DualSPHysics' ``WallRegAwas2`` at dp = 6 mm (GenCase: x = 0.008 to 2.996 m)."""
+PISTON_FLUID_ROWS = 43
+"""Fluid rows of ``WallRegAwas2`` at dp = 6 mm (GenCase: z = 0.008 to 0.260 m, one dp above its
+floor's particles at z = 0.002): 43 x 499 = 21,457 fluid particles."""
+PISTON_TANK_HEIGHT = 0.6
+"""Height [m] of ``WallRegAwas2``'s walls and paddle (its boxes are 0.6 m high)."""
+PISTON_BED_BEHIND = 0.2
+"""Length [m] of ``WallRegAwas2``'s floor behind the paddle's face (its box starts at x = -0.2)."""
 
 
 def piston2d(dp: float) -> dict[str, Any]:
-    """2D piston flume with regular waves (nominal d = 0.266 m, H = 0.1 m, T = 1.3 s) on a 1:10
-    beach, at DualSPHysics' own dp (6 mm for the reference figures).
+    """DualSPHysics' ``WallRegAwas2``: regular waves (H = 0.1 m, T = 1.3 s, first-order piston
+    with a one-period ramp) from a piston in a flat tank closed by a vertical wall, at
+    DualSPHysics' dp (6 mm for the reference figures).
 
-    A particle lattice fills whole layers, so DualSPHysics' 0.266 m box holds 44 layers of 6 mm:
-    0.264 m of water. The flume here is built with that water depth,
-    ``lattice_layers(0.266, dp) * dp`` (the flume refuses a depth that is not whole layers), so
-    dp, the particles and the water stay DualSPHysics' and the paddle law is computed for the
-    water that is really there."""
+    Its GenCase output at dp = 6 mm (run from the XML at commit cedbb95b): 21,457 fluid
+    particles in 499 columns and 43 rows, a one-layer floor from 0.2 m behind the paddle to the
+    far wall and that wall (635 fixed), a paddle of 4 x 100 particles (400 moving): 22,492.
+    Here the same fluid (the columns and rows scale with 6 mm / dp), the floor and far wall as
+    one DBC layer, the tank 0.6 m high and 0.2 m longer behind the paddle. What differs: the
+    paddle is one layer thick (the core's paddle takes the wall's layers: 100 particles, not
+    400) and the tank has a wall behind the paddle (100 particles DualSPHysics has not); the
+    wave law is for the 0.258 m of water the lattice holds, DualSPHysics' for 0.266 m; and the
+    walls get the fluid's artificial viscosity (DualSPHysics' ``ViscoBoundFactor`` 0 switches
+    it off on wall pairs). DualSPHysics' AWAS starts at 2.6 s, WaterSim's absorber with the
+    paddle's start (Schaffer & Klopman, on here as it is there): neither matters on the short
+    intervals the side-by-side runs."""
     from . import numerics as nm
-    from .flume import Flume, Piston, PlaneBeach, RegularWave, lattice_layers
+    from .flume import Flume, Piston, RegularWave
 
-    depth = lattice_layers(0.266, dp) * dp
+    scale = 0.006 / dp
+    depth = round(PISTON_FLUID_ROWS * scale) * dp
+    length = round(PISTON_FLUID_COLUMNS * scale) * dp
 
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # a steep wave on purpose: H/d = 0.38
-        scene = Flume(
-            length=PISTON_LENGTH + 0.266 * 10.0 + 0.3,
-            depth=depth,
-            beach=PlaneBeach(toe=PISTON_LENGTH, slope=0.1),
-        ).scene(
+        warnings.simplefilter("ignore")  # a steep wave on purpose: H/d = 0.39
+        scene = Flume(length=length, depth=depth, height=PISTON_TANK_HEIGHT, damping=False).scene(
             RegularWave(height=0.1, period=1.3),
-            paddle=Piston(order=1, ramp_periods=1.0),
+            paddle=Piston(order=1, ramp_periods=1.0, absorption=True),  # its AWAS
             dp=dp,
             kernel="wendland",
             coefh=1.2,
@@ -151,9 +164,16 @@ def piston2d(dp: float) -> dict[str, Any]:
             boundary_layers=1,
             # DualSPHysics' CPU pair terms are float (module docstring)
             force_precision="f32",
-            until=10.0,
+            gauges=[],
+            runup=False,
+            until=20.0,
         )
-    return scene.to_scene()
+    out = scene.to_scene()
+    # DualSPHysics' floor runs 0.2 m behind the paddle's face (room for its stroke); whole dp,
+    # so that the lattice, which starts at the tank's corner, keeps its columns on x = 0
+    behind = math.ceil(PISTON_BED_BEHIND / dp - 1e-9) * dp
+    out["tank"]["min"][0] = min(out["tank"]["min"][0], -behind)
+    return out
 
 
 DSPH_CASES: dict[str, DsphCase] = {
