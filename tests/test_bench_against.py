@@ -41,9 +41,11 @@ from pathlib import Path
 case, out = Path(sys.argv[1]), Path(sys.argv[2])
 opts = dict(a.lstrip("-").split(":", 1) if ":" in a else (a.lstrip("-"), "") for a in sys.argv[3:])
 assert case.with_suffix(".bi4").is_file(), case
-assert opts["ompthreads"] == "1" and "cpu" in opts and opts["sv"] == "none", opts
+assert opts["ompthreads"] == os.environ["OMP_NUM_THREADS"] and "cpu" in opts, opts
+assert opts["sv"] == "none", opts
 with open(os.environ["FAKE_DSPH_LOG"], "a") as log:
-    log.write(f"dualsphysics {time.monotonic()} {os.sched_getaffinity(0)} {opts['tmax']}\\n")
+    log.write(f"dualsphysics {time.monotonic()} {os.sched_getaffinity(0)} {opts['tmax']} "
+              f"{opts['ompthreads']}\\n")
 if os.environ.get("FAKE_DSPH_FAIL") == "exit":
     sys.exit(3)
 tmax = float(opts["tmax"])
@@ -118,9 +120,27 @@ def test_side_by_side_parses_times_and_alternates(fakes: dict[str, Path]) -> Non
     # DualSPHysics ran pinned to the one core named, over the interval
     calls = fakes["log"].read_text().splitlines()
     assert len(calls) == 3
-    assert all(f"{{{min(os.sched_getaffinity(0))}}} {interval}" in c for c in calls)
+    assert all(f"{{{min(os.sched_getaffinity(0))}}} {interval} 1" in c for c in calls)
     assert (fakes["work"] / "dsph-dambreak2d" / "out0" / "Run.out").is_file()
     assert result["threads"] == 1 and result["host"] and result["date_utc"]
+
+
+@pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="needs two cores")
+def test_two_cores_run_both_codes_on_two_threads(fakes: dict[str, Path]) -> None:
+    cpus = sorted(os.sched_getaffinity(0))[:2]
+    proc = run_cli("bench", "--against", str(fakes["dsph"]), "--gencase", str(fakes["gencase"]),
+                   "--xml", str(fakes["xml"]), "--cpu", f"{cpus[0]},{cpus[1]}", "--interval",
+                   "0.0005", "--rounds", "1", "--workdir", str(fakes["work"]), "--json",
+                   env={"FAKE_DSPH_LOG": str(fakes["log"])})
+    assert proc.returncode == 0, proc.stderr
+    result = json.loads(proc.stdout)
+    assert result["threads"] == 2 and result["cpus"] == cpus
+    # DualSPHysics on both cores with two OpenMP threads
+    (call,) = fakes["log"].read_text().splitlines()
+    assert call.endswith(" 2") and f"{{{cpus[0]}, {cpus[1]}}}" in call
+    # WaterSim's worker process on two rayon threads
+    log = (fakes["work"] / "dsph-dambreak2d" / "watersim0.log").read_text()
+    assert json.loads(log.strip().splitlines()[-1])["threads"] == 2
 
 
 def test_side_by_side_prints_a_table_and_its_progress(fakes: dict[str, Path]) -> None:
@@ -147,6 +167,8 @@ def test_a_failed_dualsphysics_run_is_reported(fakes: dict[str, Path], failure: 
     (("--interval", "-1"), "--interval"),
     (("--rounds", "0"), "--rounds"),
     (("--cpu", "4096"), "--cpu"),
+    (("--cpu", "0,0"), "--cpu"),
+    (("--cpu", "one"), "--cpu"),
     (("--particles", "3000"), "--particles"),
     (("--steps", "5"), "--steps"),
 ])

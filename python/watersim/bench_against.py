@@ -6,12 +6,13 @@ For each DualSPHysics case XML the user names (``--xml``, recognised by its file
 1. runs GenCase (``--gencase``) on it once, into a work folder;
 2. runs, ``--rounds`` times and alternating which goes first, DualSPHysics' CPU binary on the
    generated case and WaterSim on the matching bench case, each from t = 0 over the same
-   simulated interval (``--interval``), each as its own process pinned by ``taskset`` to one
-   core (``--cpu``) on one thread (``-ompthreads:1``; ``RAYON_NUM_THREADS=1``);
-3. reads the pinned core's busy time from ``/proc/stat`` before and after each run and takes
+   simulated interval (``--interval``), each as its own process pinned by ``taskset`` to the
+   cores named (``--cpu 0``, or ``--cpu 0,1`` for two), one thread per core
+   (``-ompthreads:N``; ``RAYON_NUM_THREADS=N``);
+3. reads the pinned cores' busy time from ``/proc/stat`` before and after each run and takes
    the run's own CPU time (the child's rusage) off it: what is left is other processes' load on
-   that core (``foreign``, a share of the run's wall time), reported beside the hypervisor's
-   ``steal`` share;
+   those cores (``foreign``, a share of the cores' time over the run), reported beside the
+   hypervisor's ``steal`` share;
 4. prints per case both codes' particles, steps and run times and, over the rounds, the
    median and range of two ratios, DualSPHysics' time over WaterSim's: per particle-step and
    per simulated second (the second counts the steps each code takes, the first does not).
@@ -44,8 +45,8 @@ from typing import Any
 from .bench_cases import DSPH_CASES
 from .errors import CliError
 
-__all__ = ["CoreTicks", "RunTiming", "core_ticks", "parse_run_out", "ratio_summary",
-           "run_against", "xml_cases"]
+__all__ = ["CoreTicks", "RunTiming", "core_ticks", "cores_ticks", "parse_cpus",
+           "parse_run_out", "ratio_summary", "run_against", "xml_cases"]
 
 DSPH_FIELDS = {
     "particles": r"Particles of simulation \(initial\)\.*:\s*([\d,.]+)",
@@ -68,8 +69,9 @@ class RunTiming:
         runtime_s: wall time of the code's time loop [s] (set-up excluded).
         process_wall_s: wall time of the whole process [s].
         process_cpu_s: user + system CPU time of the whole process [s].
-        foreign: other processes' busy time on the pinned core over the process's wall time.
-        steal: the hypervisor's steal time on that core over the process's wall time.
+        foreign: other processes' busy time on the pinned cores over the cores' time (their
+            number times the process's wall time).
+        steal: the hypervisor's steal time on those cores over the cores' time.
     """
 
     code: str
@@ -139,36 +141,46 @@ def core_ticks(cpu: int, stat_text: str | None = None) -> CoreTicks:
     raise RuntimeError(f"/proc/stat: no line for cpu{cpu}")
 
 
-def _timed_process(cmd: list[str], env: dict[str, str], cpu: int,
+def cores_ticks(cpus: list[int], stat_text: str | None = None) -> CoreTicks:
+    """The summed ``cpuN`` lines of ``cpus``, read from one snapshot of ``/proc/stat``."""
+    if stat_text is None:
+        stat_text = Path("/proc/stat").read_text(encoding="ascii")
+    ticks = [core_ticks(cpu, stat_text) for cpu in cpus]
+    return CoreTicks(sum(t.busy_s for t in ticks), sum(t.steal_s for t in ticks))
+
+
+def _timed_process(cmd: list[str], env: dict[str, str], cpus: list[int],
                    log: Path) -> tuple[float, float, float, float, str]:
-    """Runs ``cmd`` pinned to ``cpu``; its wall and CPU time, the foreign and steal shares of
-    the core over the run, and its standard output. Its output goes to ``log`` too."""
-    before_core = core_ticks(cpu)
+    """Runs ``cmd`` pinned to ``cpus``; its wall and CPU time, the foreign and steal shares of
+    those cores over the run, and its standard output. Its output goes to ``log`` too."""
+    before_core = cores_ticks(cpus)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    proc = subprocess.run(["taskset", "-c", str(cpu), *cmd], env=env, capture_output=True,
-                          text=True, check=False)
+    proc = subprocess.run(["taskset", "-c", ",".join(map(str, cpus)), *cmd], env=env,
+                          capture_output=True, text=True, check=False)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    after_core = core_ticks(cpu)
+    after_core = cores_ticks(cpus)
     log.write_text(proc.stdout + proc.stderr, encoding="utf-8")
     if proc.returncode != 0:
         raise RuntimeError(f"{cmd[0]} exited with code {proc.returncode} (output: {log}):\n"
                            + "\n".join((proc.stdout + proc.stderr).splitlines()[-8:]))
     own = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    foreign = max(0.0, after_core.busy_s - before_core.busy_s - own) / wall
-    steal = (after_core.steal_s - before_core.steal_s) / wall
+    capacity = wall * len(cpus)
+    foreign = max(0.0, after_core.busy_s - before_core.busy_s - own) / capacity
+    steal = (after_core.steal_s - before_core.steal_s) / capacity
     return wall, own, min(foreign, 1.0), steal, proc.stdout
 
 
 def _run_dualsphysics(binary: Path, case_path: Path, out: Path, interval: float,
-                      cpu: int) -> RunTiming:
+                      cpus: list[int]) -> RunTiming:
     if out.exists():
         shutil.rmtree(out)
-    cmd = [str(binary), str(case_path), str(out), "-cpu", "-ompthreads:1", f"-tmax:{interval}",
-           f"-tout:{interval}", "-sv:none"]
-    env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    wall, cpu_s, foreign, steal, _ = _timed_process(cmd, env, cpu, out.with_suffix(".log"))
+    threads = len(cpus)
+    cmd = [str(binary), str(case_path), str(out), "-cpu", f"-ompthreads:{threads}",
+           f"-tmax:{interval}", f"-tout:{interval}", "-sv:none"]
+    env = {**os.environ, "OMP_NUM_THREADS": str(threads)}
+    wall, cpu_s, foreign, steal, _ = _timed_process(cmd, env, cpus, out.with_suffix(".log"))
     run_out = out / "Run.out"
     if not run_out.is_file():
         raise RuntimeError(f"{binary}: wrote no {run_out}")
@@ -177,10 +189,10 @@ def _run_dualsphysics(binary: Path, case_path: Path, out: Path, interval: float,
                      got["runtime_s"], wall, cpu_s, foreign, steal)
 
 
-def _run_watersim(case: str, interval: float, cpu: int, log: Path) -> RunTiming:
+def _run_watersim(case: str, interval: float, cpus: list[int], log: Path) -> RunTiming:
     cmd = [sys.executable, "-m", "watersim.bench_against", "worker", case, repr(interval)]
-    env = {**os.environ, "RAYON_NUM_THREADS": "1"}
-    wall, cpu_s, foreign, steal, out = _timed_process(cmd, env, cpu, log)
+    env = {**os.environ, "RAYON_NUM_THREADS": str(len(cpus))}
+    wall, cpu_s, foreign, steal, out = _timed_process(cmd, env, cpus, log)
     got = json.loads(out.strip().splitlines()[-1])
     return RunTiming("watersim", got["particles"], got["steps"], got["sim_time_s"],
                      got["runtime_s"], wall, cpu_s, foreign, steal)
@@ -190,6 +202,7 @@ def worker(case: str, interval: float) -> dict[str, Any]:
     """The WaterSim side of a round (run in its own pinned process): builds ``case``, then
     times ``Simulation.run(interval)`` from t = 0."""
     from .bench_cases import dsph_scene
+    from .runrecord import rayon_threads
     from .simulation import Simulation
 
     sim = Simulation(dsph_scene(case))
@@ -198,7 +211,7 @@ def worker(case: str, interval: float) -> dict[str, Any]:
     sim.run(interval)
     runtime = time.perf_counter() - t0
     return {"particles": sim.n_particles, "steps": sim.steps - steps0, "sim_time_s": sim.time,
-            "runtime_s": runtime}
+            "runtime_s": runtime, "threads": rayon_threads()}
 
 
 def ratio_summary(values: list[float]) -> dict[str, Any]:
@@ -229,6 +242,23 @@ def case_summary(rounds: list[dict[str, Any]]) -> dict[str, Any]:
     return {**codes, "ratio_per_particle_step": ratio_summary(per_step),
             "ratio_per_sim_second": ratio_summary(per_sim_s),
             "order": [r["first"] for r in rounds]}
+
+
+def parse_cpus(text: str) -> list[int]:
+    """The cores of ``--cpu``: ``"0"`` or ``"0,1"``, each one this process may run on, none
+    twice; one thread per core."""
+    allowed = sorted(os.sched_getaffinity(0))
+    try:
+        cpus = [int(part) for part in str(text).split(",")]
+    except ValueError:
+        raise CliError(f"--cpu: a core number or a comma-separated list of them, got {text!r}"
+                       ) from None
+    if len(set(cpus)) != len(cpus):
+        raise CliError(f"--cpu: a core named twice in {text!r}")
+    for cpu in cpus:
+        if cpu not in allowed:
+            raise CliError(f"--cpu: CPU {cpu} is not one this process may run on ({allowed})")
+    return cpus
 
 
 def xml_cases(paths: list[str]) -> dict[str, Path]:
@@ -293,20 +323,18 @@ def run_against(args: Any) -> dict[str, Any]:
     if not args.xml:
         raise CliError("--xml: name at least one DualSPHysics case XML with --against")
     cases = xml_cases(args.xml)
-    interval, rounds, cpu = args.interval, args.rounds, args.cpu
+    interval, rounds, cpus = args.interval, args.rounds, parse_cpus(args.cpu)
     if not (math.isfinite(interval) and interval > 0):
         raise CliError(f"--interval: a positive number of simulated seconds, got {interval}")
     if rounds < 1:
         raise CliError(f"--rounds: must be at least 1, got {rounds}")
-    if cpu not in os.sched_getaffinity(0):
-        raise CliError(f"--cpu: CPU {cpu} is not one this process may run on "
-                       f"({sorted(os.sched_getaffinity(0))})")
     if shutil.which("taskset") is None:
         raise CliError("--against: needs taskset (util-linux) to pin each run to one core")
     keep = args.workdir is not None
     work = Path(args.workdir or tempfile.mkdtemp(prefix="watersim-against-"))
     started = time.perf_counter()
-    result: dict[str, Any] = {**_host(), "cpu": cpu, "threads": 1, "interval_s": interval,
+    result: dict[str, Any] = {**_host(), "cpus": cpus, "threads": len(cpus),
+                              "interval_s": interval,
                               "rounds": rounds, "binary": str(binary), "gencase": str(gencase),
                               "cases": {}}
     try:
@@ -321,8 +349,8 @@ def run_against(args: Any) -> dict[str, Any]:
                 for code in order:
                     timings[code] = (
                         _run_dualsphysics(binary, generated, work / case / f"out{r}", interval,
-                                          cpu) if code == "dualsphysics" else
-                        _run_watersim(case, interval, cpu, work / case / f"watersim{r}.log"))
+                                          cpus) if code == "dualsphysics" else
+                        _run_watersim(case, interval, cpus, work / case / f"watersim{r}.log"))
                 done.append(timings)
                 took = time.perf_counter() - t_round
                 left = took * (rounds - r - 1)
@@ -346,8 +374,9 @@ def _range(s: dict[str, Any], fmt: str) -> str:
 def against_table(result: dict[str, Any]) -> str:
     """The side-by-side result as text: one block per case."""
     lines = [f"WaterSim against DualSPHysics, side by side: {result['rounds']} round(s) "
-             f"alternated, {result['interval_s']:g} s simulated from t = 0, one thread pinned "
-             f"to CPU {result['cpu']}; {result['host']} ({result['cpu_model']}), "
+             f"alternated, {result['interval_s']:g} s simulated from t = 0, "
+             f"{result['threads']} thread(s) pinned to CPU(s) "
+             f"{','.join(map(str, result['cpus']))}; {result['host']} ({result['cpu_model']}), "
              f"{result['date_utc']} UTC, {result['harness_wall_s']:.0f} s in all",
              f"{'case':<16} {'code':<13} {'particles':>9} {'steps':>7} {'us/particle-step':>22}"
              f" {'s per sim. s':>22} {'foreign load':>18}"]

@@ -426,7 +426,7 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
 PLAIN_DEFAULTS: dict[str, Any] = {"case": "dambreak2d", "steps": 20, "warmup": 3, "repeat": 1}
 """The defaults of a plain bench run's options (refused with ``--against``)."""
 
-AGAINST_DEFAULTS: dict[str, Any] = {"interval": 0.2, "rounds": 3, "cpu": 0}
+AGAINST_DEFAULTS: dict[str, Any] = {"interval": 0.2, "rounds": 3, "cpu": "0"}
 """The defaults of ``--against``'s own options (refused without ``--against``)."""
 
 
@@ -435,8 +435,9 @@ def _add_against_arguments(bench: argparse.ArgumentParser) -> None:
     group = bench.add_argument_group(
         "side by side with DualSPHysics",
         "--against runs DualSPHysics' CPU binary on the GenCase output of each --xml and "
-        "WaterSim on the matching dsph-* case, alternately, pinned to one core on one thread, "
-        "and prints the ratios of their times with the other processes' load on that core")
+        "WaterSim on the matching dsph-* case, alternately, pinned to the cores of --cpu with "
+        "one thread per core, and prints the ratios of their times with the other processes' "
+        "load on those cores")
     group.add_argument("--against", metavar="DUALSPHYSICS", default=None,
                        help="DualSPHysics' CPU binary (e.g. DualSPHysics5.4CPU_linux64)")
     group.add_argument("--gencase", metavar="GENCASE", default=None,
@@ -449,8 +450,9 @@ def _add_against_arguments(bench: argparse.ArgumentParser) -> None:
     group.add_argument("--rounds", type=int, default=None, metavar="R",
                        help=f"rounds per case, the order alternating "
                             f"({AGAINST_DEFAULTS['rounds']})")
-    group.add_argument("--cpu", type=int, default=None, metavar="N",
-                       help=f"the core both codes are pinned to ({AGAINST_DEFAULTS['cpu']})")
+    group.add_argument("--cpu", default=None, metavar="N[,M...]",
+                       help="the cores both codes are pinned to, one thread each: 0 for one "
+                            f"thread, 0,1 for two ({AGAINST_DEFAULTS['cpu']})")
     group.add_argument("--workdir", metavar="DIR", default=None,
                        help="keep GenCase's output and both codes' logs here (default: a "
                             "temporary folder, removed)")

@@ -12,7 +12,7 @@
                    [--particles N] [--steps K] [--warmup W] [--repeat R] [--compare-threads A,B]
                    [--scaling N1,N2,...] [--set ...] [--json]   (watersim.bench_command)
     watersim bench --against DUALSPHYSICS --gencase GENCASE --xml CASE.xml ... [--interval S]
-                   [--rounds R] [--cpu N] [--workdir DIR] [--json]   (watersim.bench_against)
+                   [--rounds R] [--cpu N[,M]] [--workdir DIR] [--json]   (watersim.bench_against)
     watersim stress [--quick] [--jobs N] [--json FILE] [--report DIR]   (watersim.stress)
     watersim validate [CASE ...] [--resolutions a,b,c] [--quick] [--json FILE] [--report DIR]
 
