@@ -58,6 +58,21 @@ def test_the_piston_case_is_wallregawas2s_fluid_and_walls() -> None:
     assert x.min(axis=0) == pytest.approx([0.5 * 0.006, 0.5 * 0.006])
 
 
+def test_the_cubic_spline_case_runs_dualsphysics_tensile_correction() -> None:
+    # DualSPHysics applies Monaghan's (2000) correction to every cubic-spline pair
+    assert dsph_scene("dsph-dambreak3d")["tensile_correction"] == {"model": "monaghan"}
+    assert all("tensile_correction" not in dsph_scene(c)
+               for c in ("dsph-dambreak2d", "dsph-piston2d"))
+    for law, expected in (("none", None), ("monaghan", "monaghan")):
+        proc = run_cli("bench", "--case", "dsph-dambreak3d", "--particles", "3000", "--steps",
+                       "1", "--set", f"tensile_correction={law}", "--json",
+                       env={"RAYON_NUM_THREADS": "1"})
+        assert proc.returncode == 0, proc.stderr
+        assert json.loads(proc.stdout)["tensile_correction"] == expected
+    proc = run_cli("bench", "--case", "dsph-dambreak3d", "--set", "tensile_correction=gray")
+    assert proc.returncode == 2 and "tensile_correction" in proc.stderr
+
+
 def test_bench_prints_no_ratio_it_did_not_measure() -> None:
     proc = run_cli("bench", "--case", "dsph-dambreak2d", "--particles", "3000", "--steps", "2",
                    "--json", env={"RAYON_NUM_THREADS": "1"})

@@ -67,7 +67,8 @@ def test_one_default_per_parameter(case: str) -> None:
                                            f"{defaults[key]!r}, and no preset chooses it"
 
 
-@pytest.mark.parametrize("cls", [ws.DamBreak, ws.Tank, FlumeScene, *nm.TAGS, nm.Shifting])
+@pytest.mark.parametrize("cls", [ws.DamBreak, ws.Tank, FlumeScene, *nm.TAGS, nm.Shifting,
+                                 nm.TensileCorrection])
 def test_python_declares_no_default_of_its_own(cls: type) -> None:
     """A core parameter's field defaults to None (the core decides) in every builder and
     option class."""
@@ -188,6 +189,59 @@ def test_delta_plus_shifting_is_a_model_of_the_shifting_option() -> None:
     with pytest.raises(ws.SceneError, match=r"^shifting\.surface_threshold: belongs to"):
         _core.Simulation(json.dumps(ws.Tank(until=0.01).to_scene() | {
             "shifting": {"model": "delta_plus", "surface_threshold": 1.5}}))
+
+
+def test_tensile_correction_round_trips_and_is_off_by_default() -> None:
+    """Monaghan's (2000) tensile correction (``tensile_correction``): off unless set, the
+    cubic spline only; through the core, ``--set`` and a scene file and back; an unknown key, a
+    bad value and a Wendland kernel refused, naming the key, in Python and in the core."""
+    assert nm.TensileCorrection().to_core() == {}
+    assert [nm.core_default(f"tensile_correction.{k}")
+            for k in ("model", "epsilon_pos", "epsilon_neg")] == ["monaghan", 0.01, 0.2]
+    b = ws.Tank(kernel="cubic_spline", tensile_correction=nm.TensileCorrection(epsilon_neg=0.3),
+                until=0.01)
+    assert b.to_scene()["tensile_correction"] == {"epsilon_neg": 0.3}  # unset values left out
+    assert b.resolved_scene()["tensile_correction"] == {
+        "model": "monaghan", "epsilon_pos": 0.01, "epsilon_neg": 0.3}
+    sim = b.build()
+    assert sim.params()["tensile_correction"] == "monaghan"
+    assert sim.scene["tensile_correction"]["epsilon_neg"] == 0.3
+    plain = ws.Tank(kernel="cubic_spline", until=0.01)
+    assert "tensile_correction" not in plain.to_scene()
+    assert "tensile_correction" not in plain.resolved_scene()
+    assert plain.build().params()["tensile_correction"] is None
+    # its forms: the law's name, a table, --set, a scene file (written and read back)
+    on = nm.TensileCorrection(model="monaghan")
+    assert ws.Tank(kernel="cubic_spline", tensile_correction="monaghan").tensile_correction == on
+    assert ws.Tank(kernel="cubic_spline",
+                   tensile_correction={"model": "monaghan"}).tensile_correction == on
+    assert cli.builder_from_args("dambreak2d", ["kernel=cubic_spline", "tensile_correction=monaghan"]
+                                 ).tensile_correction == on
+    set_one = cli.builder_from_args("dambreak2d", ["kernel=cubic_spline",
+                                                   "tensile_correction.epsilon_neg=0.25"])
+    assert set_one.tensile_correction == nm.TensileCorrection(epsilon_neg=0.25)
+    assert "tensile_correction.epsilon_pos" in cli.settable_keys("dambreak2d")
+    text = ('type = "tank"\nkernel = "cubic_spline"\n'
+            'tensile_correction = { model = "monaghan", epsilon_pos = 0.02 }\n')
+    loaded = sf.loads(text, source="f.toml").builder
+    assert loaded.tensile_correction == nm.TensileCorrection(model="monaghan", epsilon_pos=0.02)
+    assert sf.loads(sf.dumps(loaded), source="g.toml").builder == loaded
+    # refusals
+    with pytest.raises(ws.SceneError, match=r"^tensile_correction\.eps: not a parameter"):
+        ws.Tank(kernel="cubic_spline", tensile_correction={"eps": 0.2})
+    with pytest.raises(ws.SceneError, match=r"^tensile_correction: .*cubic_spline"):
+        ws.Tank(tensile_correction="monaghan")  # the core's default kernel, Wendland
+    with pytest.raises(ws.SceneError, match=r"^tensile_correction\.epsilon_neg: "):
+        nm.TensileCorrection(epsilon_neg=-0.2)
+    with pytest.raises(ws.SceneError, match=r"^tensile_correction\.model: unknown value"):
+        nm.TensileCorrection(model="gray")
+    tank = ws.Tank(until=0.01).to_scene()
+    for kernel, table, key in (("wendland", {"model": "monaghan"}, "tensile_correction: "),
+                               ("cubic_spline", {"eps": 0.2}, "tensile_correction"),
+                               ("cubic_spline", {"epsilon_pos": -1.0},
+                                "tensile_correction.epsilon_pos")):
+        with pytest.raises(ws.SceneError, match=key):
+            _core.Simulation(json.dumps(tank | {"kernel": kernel, "tensile_correction": table}))
 
 
 def test_scene_files_take_option_tables_and_set_their_parameters() -> None:

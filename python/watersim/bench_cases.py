@@ -14,9 +14,10 @@ state in f64). ``watersim bench --set force_precision=f64`` times WaterSim's def
 =====================  =========================================================================
 ``dsph-dambreak3d``    ``CaseDambreak``: tank 1.6 x 0.67 x 0.4 m, water 0.4 x 0.67 x 0.3 m at the
                        origin, column 0.12 x 0.12 x 0.45 m at (0.9, 0.24, 0); dp 0.0085 m;
-                       171,496 particles (128,310 fluid); cubic spline, coefh 1.0; artificial
-                       alpha 0.1; Fourtakas delta 0.1; Verlet (Euler every 40); CFL 0.2;
-                       coefsound 20.
+                       171,496 particles (128,310 fluid); cubic spline, coefh 1.0, with
+                       Monaghan's (2000) tensile correction, which DualSPHysics applies to
+                       every cubic-spline pair; artificial alpha 0.1; Fourtakas delta 0.1;
+                       Verlet (Euler every 40); CFL 0.2; coefsound 20.
 ``dsph-dambreak2d``    ``CaseDambreakVal2D``: column 1 x 2 m in a 4 m tank, dp 0.01 m, 21,001
                        particles (20,000 fluid); Wendland, coefh 1.0; alpha 0.02; Fourtakas delta
                        0.1; Verlet; CFL 0.2; coefsound 20.
@@ -86,6 +87,8 @@ def dambreak3d(dp: float) -> dict[str, Any]:
         3,
         dp,
         kernel="cubic_spline",
+        # DualSPHysics corrects every cubic-spline pair (GetKernelCubic_Tensil), not optional
+        tensile_correction={"model": "monaghan"},
         coefh=1.0,
         viscosity={"model": "artificial", "alpha": 0.1},
         diffusion={"model": "fourtakas", "delta": 0.1},

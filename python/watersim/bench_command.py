@@ -27,7 +27,7 @@ from .bench_cases import DSPH_CASES, dsph_scene
 from .bench_scaling import ScalingRun, fit_scaling
 from .builtin_cases import SET_HELP, builder_from_args
 from .errors import CliError, did_you_mean
-from .numerics import FORCE_PRECISIONS
+from .numerics import FORCE_PRECISIONS, TensileCorrection
 from .runrecord import error_record, rayon_threads
 from .scenefile import is_scene_file, scene_files_near
 from .simulation import Simulation
@@ -55,16 +55,26 @@ def _scaled_to(
     return sim
 
 
-def _dsph_overrides(case: str, settings: list[str]) -> dict[str, str]:
-    """The one override a DualSPHysics case takes: ``force_precision`` (the cases run f32 pair
-    terms, as DualSPHysics forms its forces in float; WaterSim's own default is f64). Empty
-    without ``--set``: the case's own scene then stands as it is."""
-    chosen: dict[str, str] = {}
+def _dsph_overrides(case: str, settings: list[str]) -> dict[str, Any]:
+    """The two overrides a DualSPHysics case takes, to time what they cost:
+    ``force_precision`` (the cases run f32 pair terms, as DualSPHysics forms its forces in
+    float; WaterSim's own default is f64) and ``tensile_correction`` (``none``, or
+    ``monaghan`` for a cubic-spline case: ``dsph-dambreak3d`` runs it, as DualSPHysics does).
+    Empty without ``--set``: the case's own scene then stands as it is."""
+    chosen: dict[str, Any] = {}
     for item in overrides.parse(settings):
+        if item.key == "tensile_correction":
+            law = item.text.strip().lower()
+            if law not in ("none", *TensileCorrection.MODELS):
+                raise CliError(f"--set: tensile_correction must be none or one of "
+                               f"{', '.join(TensileCorrection.MODELS)}, got {item.text!r}")
+            chosen["tensile_correction"] = None if law == "none" else {"model": law}
+            continue
         if item.key != "force_precision":
             raise CliError(
                 f"--set: {case} reproduces DualSPHysics' settings exactly and takes no "
-                f"override but force_precision, got {item.key!r} (use --particles N to scale it)"
+                f"override but force_precision and tensile_correction, got {item.key!r} (use "
+                "--particles N to scale it)"
             )
         precision = item.text.strip()
         if precision not in FORCE_PRECISIONS:
@@ -371,6 +381,7 @@ def _bench_record(args: argparse.Namespace, compare: tuple[int, int] | None,
         "diffusion": sim.scene["diffusion"]["model"],
         "integrator": sim.scene["integrator"]["scheme"],
         "force_precision": sim.scene.get("force_precision", "f64"),
+        "tensile_correction": (sim.scene.get("tensile_correction") or {}).get("model"),
         "sim_time": sim.time,
         "peak_rss_bytes": peak_rss,
         "baseline_rss_bytes": baseline_rss,

@@ -7,9 +7,11 @@ core's default applies (:func:`core_default`, read from ``watersim._core.scene_d
 ``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
 
 A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``boundary``,
-``shifting``) takes the option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``:
+``shifting``, ``tensile_correction``) takes the option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``:
 that model with the core's parameters) or its scene-file table
-(``{"type": "laminar", "nu": 2e-6}``); a shifting coefficient alone may be given as a number.
+(``{"type": "laminar", "nu": 2e-6}``); a shifting coefficient alone may be given as a number,
+and an option that is off by default (``shifting``, ``tensile_correction``) may be given by its
+law's name (``"monaghan"``).
 ``--set viscosity.alpha=0.03`` changes one parameter (:func:`from_settings`).
 
 The presets at the end are the numerics the built-in cases choose on purpose, with the reasons;
@@ -65,6 +67,7 @@ __all__ = [
     "Option",
     "Shifting",
     "Symplectic",
+    "TensileCorrection",
     "Verlet",
     "core_default",
     "from_settings",
@@ -344,6 +347,48 @@ class Shifting(Option):
 
 
 @dataclass(frozen=True, kw_only=True)
+class TensileCorrection(Option):
+    """Monaghan's (2000) artificial pressure against the tensile instability, as DualSPHysics
+    applies it to the cubic spline (``TensileCorrection`` in
+    ``crates/sph-core/src/physics/tensile.rs``): each pair's pressure term in the momentum
+    equation, fluid-fluid and fluid-wall, gains ``(R_a + R_b) (W_ab / W(h/1.5))^4`` with
+    ``R = eps |P| / rho^2``, ``eps = epsilon_pos`` where ``P > 0`` and ``epsilon_neg`` where
+    ``P < 0``. Off by default; ``kernel = "cubic_spline"`` only (refused with the Wendland
+    kernel). ``W(dp)`` is taken at ``h/1.5``, DualSPHysics' choice, whatever ``h/dp``.
+
+    Attributes:
+        model: ``"monaghan"`` (the only law).
+        epsilon_pos: ``eps`` at positive pressure [-] (DualSPHysics: 0.01).
+        epsilon_neg: ``eps`` at negative pressure, where water is under tension [-]
+            (Monaghan 2000, DualSPHysics: 0.2).
+    """
+
+    FIELD: ClassVar[str] = "tensile_correction"
+    MODELS: ClassVar[tuple[str, ...]] = ("monaghan",)
+    KERNELS: ClassVar[tuple[str, ...]] = ("cubic_spline",)
+    """The kernels the correction is defined for (the core's ``tensile::corrects``)."""
+
+    model: str | None = None
+    epsilon_pos: float | None = None
+    epsilon_neg: float | None = None
+
+    def check(self) -> None:
+        if self.model is not None:
+            _choice("tensile_correction.model", self.model, self.MODELS)
+        for name in ("epsilon_pos", "epsilon_neg"):
+            if (value := getattr(self, name)) is not None:
+                _non_negative(f"tensile_correction.{name}", value)
+
+    def check_kernel(self, kernel: str) -> None:
+        """Refuse a kernel the correction is not defined for (the core's check)."""
+        if kernel not in self.KERNELS:
+            raise SceneError(
+                f"tensile_correction: Monaghan's (2000) correction is defined for kernel = "
+                f"\"cubic_spline\" only (as DualSPHysics applies it), not for kernel = {kernel!r}; "
+                "leave tensile_correction out or use the cubic spline")
+
+
+@dataclass(frozen=True, kw_only=True)
 class Dbc(Option):
     """Dynamic boundary condition (Crespo et al. 2007): wall particles integrate continuity
     from their fluid neighbours, their density floored at rho0."""
@@ -403,6 +448,7 @@ OPTION_CLASSES: dict[str, tuple[type[Option], ...]] = {
     "integrator": INTEGRATORS,
     "boundary": BOUNDARIES,
     "shifting": (Shifting,),
+    "tensile_correction": (TensileCorrection,),
 }
 """The builder fields that hold an option, and the classes each takes."""
 
@@ -446,6 +492,8 @@ def option(field: str, value: Any) -> Option | None:
         return value
     if isinstance(value, str) and OPTION_CLASSES[field][0].TAG:
         return _by_tag(field, value)()
+    if isinstance(value, str) and hasattr(OPTION_CLASSES[field][0], "MODELS"):
+        return OPTION_CLASSES[field][0](model=value)  # an off-by-default option's law
     if isinstance(value, Mapping):
         return _from_table(field, value)
     if field == "shifting" and isinstance(value, (int, float)) and not isinstance(value, bool):

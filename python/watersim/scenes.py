@@ -113,6 +113,9 @@ class SceneBuilder:
             (see :data:`~watersim.numerics.FORCE_PRECISIONS`).
         shifting: particle shifting, a :class:`~watersim.numerics.Shifting` (or its
             coefficient alone); ``None``: no shifting.
+        tensile_correction: Monaghan's (2000) tensile correction, a
+            :class:`~watersim.numerics.TensileCorrection` (or ``"monaghan"``), with
+            ``kernel = "cubic_spline"`` only; ``None``: none.
         rho0: reference density [kg/m^3].
         gravity: gravitational acceleration [m/s^2], acting along -z.
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
@@ -133,8 +136,8 @@ class SceneBuilder:
     """Fields that only mean something in 3D (must stay ``None`` in 2D)."""
     CORE_KEYS: ClassVar[tuple[str, ...]] = (
         "kernel", "coefh", "coefsound", "gamma", "cfl", "viscosity", "diffusion", "integrator",
-        "boundary", "force_precision", "shifting", "rho0", "gravity", "h_swl", "boundary_layers",
-        "density_band", "lost_fraction_limit", "energy_growth_limit",
+        "boundary", "force_precision", "shifting", "tensile_correction", "rho0", "gravity", "h_swl",
+        "boundary_layers", "density_band", "lost_fraction_limit", "energy_growth_limit",
     )
     """The fields sent to the core under their own name when set (None: not sent)."""
 
@@ -151,6 +154,7 @@ class SceneBuilder:
     boundary: nm.Dbc | nm.Adami | nm.Mdbc | str | None = None
     force_precision: str | None = None
     shifting: nm.Shifting | float | None = None
+    tensile_correction: nm.TensileCorrection | str | None = None
     rho0: float | None = None
     gravity: float | None = None
     h_swl: float | None = None
@@ -218,6 +222,8 @@ class SceneBuilder:
             )
         if isinstance(self.shifting, nm.Shifting):
             self.shifting.check_dim(self.dim)
+        if isinstance(self.tensile_correction, nm.TensileCorrection):
+            self.tensile_correction.check_kernel(str(self.core_value("kernel")))
 
     def _validate_monitors(self) -> None:
         """The stability monitor thresholds that are set (ranges: docs/stability.md)."""

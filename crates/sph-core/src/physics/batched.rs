@@ -19,6 +19,7 @@
 
 use super::eos::{pressure, seventh_power, sound_speed, TaitPair};
 use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
+use super::tensile::{self, TensilePair};
 use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
@@ -99,6 +100,8 @@ struct Own<F: PairFloat> {
     p: F,
     p_rho2: F,
     sound_speed: F,
+    /// Tensile correction: `R_a = eps |P_a| / rho_a^2` (0 without it).
+    tens: F,
 }
 
 /// Partial sums of particle `a`, one per lane (the first `F::LANES` are used).
@@ -114,7 +117,7 @@ struct Sums<F: PairFloat> {
 /// Sums the pair terms of the collected pairs into `sums` and empties the batch. `G`: the group
 /// of the neighbours (density diffusion acts between fluid particles only).
 #[inline(always)]
-fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize>(
+fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool, const G: usize>(
     c: &Constants,
     kernel: &K,
     f: &Fields<'_, D>,
@@ -181,6 +184,7 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     let tait = TaitPair::<F>::new(c);
     let (eta2, h) = (F::of(c.eta2), F::of(c.h));
     let (alpha, lam_coef, rho0) = (F::of(c.alpha), F::of(4.0 * c.nu), F::of(c.rho0));
+    let tens = TensilePair::<F>::new(&c.tensile);
     let three = D::DIM == 3;
     for k in 0..n_pad {
         let (rx, ry, rz, r2) = if F::SINGLE {
@@ -222,7 +226,11 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
         let vr = vx * rx + vy * ry + vz * rz;
         s.out_visc[k] = (h * vr * inv_r2_eta2).abs();
         let inv_rhob = rr * r2e * sum_rho * inv_all;
-        let mut p_term = own.p_rho2 + pb * inv_rhob * inv_rhob;
+        let pb_rho2 = pb * inv_rhob * inv_rhob;
+        let mut p_term = own.p_rho2 + pb_rho2;
+        if TENS {
+            p_term += tens.term(dist, own.tens, tens.stress(pb, pb_rho2));
+        }
         if VISC == VISC_ARTIFICIAL {
             let cbar_rhobar = (own.sound_speed + cb) * inv_sum_rho;
             // `vr < 0 ? vr : 0` is `vr.min(0.0)` for every input (NaN gives 0 both ways),
@@ -305,7 +313,7 @@ fn lane_sum<F: PairFloat>(s: &[F; MAX_LANES]) -> Real {
 /// Collects the neighbours of `own` in group `G` and sums their terms. Plain loops, no
 /// closures: a closure would be compiled without the caller's target features.
 #[inline(always)]
-fn gather_group<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const G: usize, const AVX2: bool>(
+fn gather_group<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool, const G: usize, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -330,7 +338,7 @@ fn gather_group<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8,
         // branch, which the particle lattice makes predictable.
         while j < end {
             if s.n == BATCH {
-                sum_batch::<F, D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
+                sum_batch::<F, D, K, VISC, DIFF, T7, TENS, G>(c, kernel, f, own, s, sums);
             }
             let m = (end - j).min(BATCH - s.n);
             let mut k = s.n;
@@ -363,12 +371,12 @@ fn gather_group<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8,
             j += m;
         }
     }
-    sum_batch::<F, D, K, VISC, DIFF, T7, G>(c, kernel, f, own, s, sums);
+    sum_batch::<F, D, K, VISC, DIFF, T7, TENS, G>(c, kernel, f, own, s, sums);
 }
 
 /// Acceleration, density rate and step limits of fluid particle `a` (storage slot).
 #[inline(always)]
-fn particle_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
+fn particle_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -384,21 +392,23 @@ fn particle_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: 
     let rho = f.rho[a];
     let p = pressure(c, rho);
     let cs = sound_speed(c, rho);
+    let p_rho2 = p / (rho * rho);
     let own = Own {
         slot: a,
         vel,
         rho: F::of(rho),
         rel: F::of(rho * c.inv_rho0 - 1.0),
         p: F::of(p),
-        p_rho2: F::of(p / (rho * rho)),
+        p_rho2: F::of(p_rho2),
         sound_speed: F::of(cs),
+        tens: if TENS { F::of(TensilePair::<Real>::new(&c.tensile).stress(p, p_rho2)) } else { F::of(0.0) },
     };
     let mut sums = Sums::<F>::default();
     grid.stencil_rows(f.pos[a], &mut s.rows);
     debug_assert_eq!(GROUPS, 3);
-    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_FIXED, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_MOVING, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
-    gather_group::<F, D, K, VISC, DIFF, T7, GROUP_FLUID, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, TENS, GROUP_FIXED, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, TENS, GROUP_MOVING, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
+    gather_group::<F, D, K, VISC, DIFF, T7, TENS, GROUP_FLUID, AVX2>(c, kernel, grid, f, &own, s, &mut sums);
 
     let mut acc = D::V::ZERO;
     for d in 0..D::DIM {
@@ -414,7 +424,7 @@ fn particle_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: 
 
 /// Forces on the fluid particles `first..first + acc.len()` (indices into the fluid range).
 #[inline(always)]
-fn chunk_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const AVX2: bool>(
+fn chunk_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool, const AVX2: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -432,7 +442,7 @@ fn chunk_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8,
             *drho_a = 0.0;
             continue;
         }
-        let (acc_v, drho_v, lim) = particle_forces::<F, D, K, VISC, DIFF, T7, AVX2>(c, kernel, grid, f, a, &mut s);
+        let (acc_v, drho_v, lim) = particle_forces::<F, D, K, VISC, DIFF, T7, TENS, AVX2>(c, kernel, grid, f, a, &mut s);
         *acc_a = acc_v;
         *drho_a = drho_v;
         limits = limits.merge(lim);
@@ -447,7 +457,7 @@ fn chunk_forces<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8,
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn chunk_forces_avx2<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+unsafe fn chunk_forces_avx2<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -456,7 +466,7 @@ unsafe fn chunk_forces_avx2<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, con
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
-    chunk_forces::<F, D, K, VISC, DIFF, T7, true>(c, kernel, grid, f, first, acc, drho)
+    chunk_forces::<F, D, K, VISC, DIFF, T7, TENS, true>(c, kernel, grid, f, first, acc, drho)
 }
 
 /// Whether the batched loop runs its AVX2 variant on this CPU.
@@ -527,17 +537,28 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
         drho.len(),
         f.fluid_start
     );
-    match (c.pair_f32, seventh_power(c)) {
-        (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
-        (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),
-        (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho, avx2),
-        (true, false) => forces_for_gamma::<f32, D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho, avx2),
+    macro_rules! for_precision {
+        ($tens:expr) => {
+            match (c.pair_f32, seventh_power(c)) {
+                (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (true, false) => forces_for_gamma::<f32, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+            }
+        };
+    }
+    // The tensile correction (`tensile.rs`), the kernel's constant first: a kernel without the
+    // correction compiles no loop with it.
+    if const { tensile::corrects(K::KIND) } && c.tensile.on {
+        for_precision!(true)
+    } else {
+        for_precision!(false)
     }
 }
 
-/// [`fluid_forces_variant`] with the pair float type `F` and `T7` = "gamma is 7" fixed at
-/// compile time.
-fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool>(
+/// [`fluid_forces_variant`] with the pair float type `F`, `T7` = "gamma is 7" and the tensile
+/// correction `TENS` fixed at compile time.
+fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const T7: bool, const TENS: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -558,10 +579,10 @@ fn forces_for_gamma<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF:
             #[cfg(target_arch = "x86_64")]
             if avx2 {
                 // SAFETY: `avx2` is true only where AVX2 was detected (asserted above).
-                return unsafe { chunk_forces_avx2::<F, D, K, VISC, DIFF, T7>(c, kernel, grid, &f, first, acc_c, drho_c) };
+                return unsafe { chunk_forces_avx2::<F, D, K, VISC, DIFF, T7, TENS>(c, kernel, grid, &f, first, acc_c, drho_c) };
             }
             let _ = avx2;
-            chunk_forces::<F, D, K, VISC, DIFF, T7, false>(c, kernel, grid, &f, first, acc_c, drho_c)
+            chunk_forces::<F, D, K, VISC, DIFF, T7, TENS, false>(c, kernel, grid, &f, first, acc_c, drho_c)
         },
         StepLimits::merge,
     )

@@ -7,6 +7,7 @@
 use rayon::prelude::*;
 
 use super::eos::{pressure, sound_speed};
+use super::tensile::{self, TensilePair};
 use super::{Constants, NEIGHBOUR_TASK, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
@@ -98,7 +99,13 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     drho: &mut [Real],
 ) -> StepLimits {
     if VISC == VISC_LAMINAR_SPS {
-        fluid_forces_scalar::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho)
+        // the tensile correction (`tensile.rs`), the kernel's constant first: a kernel without
+        // the correction compiles no loop with it (the batched loop chooses the same way)
+        if const { tensile::corrects(K::KIND) } && c.tensile.on {
+            fluid_forces_scalar::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho)
+        } else {
+            fluid_forces_scalar::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho)
+        }
     } else {
         super::batched::fluid_forces_batched::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho)
     }
@@ -116,8 +123,9 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// over fluid neighbours (Molteni & Colagrossi 2009 Eq. 8; the hydrostatic part
 /// `rho^H_ba = rho0 ((1 + rho0 g z_ab / B)^(1/gamma) - 1)` is removed for Fourtakas et al. 2019,
 /// as DualSPHysics' DDT2 does).
-#[allow(clippy::too_many_arguments)]
-pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+/// With Monaghan's (2000) tensile correction (`TENS`: [`fluid_forces`] sets it where the scene
+/// has it) the pressure term gains `(R_a + R_b) f_ab^4` (`tensile.rs`).
+pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const TENS: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -125,6 +133,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
     acc: &mut [D::V],
     drho: &mut [Real],
 ) -> StepLimits {
+    let tens = TensilePair::<Real>::new(&c.tensile);
     let mut g = D::V::ZERO;
     g.set(D::DIM - 1, -c.gravity);
     let support2 = c.support * c.support;
@@ -142,6 +151,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
             let (pa, va, rhoa) = (f.pos[a], f.vel[a], f.rho[a]);
             let pa_p = pressure(c, rhoa);
             let pa_rho2 = pa_p / (rhoa * rhoa);
+            let tens_a = if TENS { tens.stress(pa_p, pa_rho2) } else { 0.0 };
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
             let mut sum_acc = D::V::ZERO;
@@ -176,7 +186,11 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
                     // P_b / rho_b^2 from the pair's reciprocal of rho_b (pressure is not stored)
                     let inv_rhob = rr * r2e * sum_rho * inv_all;
                     let pb = pressure(c, rhob);
-                    let mut p_term = pa_rho2 + pb * inv_rhob * inv_rhob;
+                    let pb_rho2 = pb * inv_rhob * inv_rhob;
+                    let mut p_term = pa_rho2 + pb_rho2;
+                    if TENS {
+                        p_term += tens.term(dist, tens_a, tens.stress(pb, pb_rho2));
+                    }
                     if VISC == VISC_ARTIFICIAL {
                         // Pi_ab acts on approaching pairs only (v_ab.r_ab < 0); min() instead of
                         // a branch: the sign is unpredictable, and for v_ab.r_ab >= 0 the term

@@ -6,6 +6,7 @@ pub mod batched;
 pub mod delta_plus;
 pub mod eos;
 pub mod forces;
+pub mod tensile;
 
 use crate::math::Real;
 use crate::scene::{Diffusion, ForcePrecision, Scene, Viscosity};
@@ -80,6 +81,8 @@ pub struct Constants {
     pub density_band: Real,
     /// The batched force loop forms its pair terms in f32 (`ForcePrecision::F32`).
     pub pair_f32: bool,
+    /// Monaghan's (2000) tensile correction (`on` false without it).
+    pub tensile: tensile::TensileConstants,
 }
 
 impl Constants {
@@ -128,6 +131,7 @@ impl Constants {
             cfl: scene.cfl,
             density_band: scene.density_band,
             pair_f32: scene.force_precision == ForcePrecision::F32,
+            tensile: tensile::TensileConstants::new(scene),
         }
     }
 }

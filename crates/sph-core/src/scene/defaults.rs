@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, ShiftingModel, Slip, Viscosity};
 use crate::kernel::KernelKind;
+use crate::physics::tensile::TensileModel;
 use crate::math::Real;
 
 /// Every default, laid out as the scene's keys: `viscosity.nu` is the default of the `nu` key
@@ -33,6 +34,7 @@ pub struct Defaults {
     pub boundary: BoundaryDefaults,
     pub force_precision: ForcePrecision,
     pub shifting: ShiftingDefaults,
+    pub tensile_correction: TensileDefaults,
     pub damping: DampingDefaults,
     /// Stability monitors (docs/stability.md): loose enough that a healthy run never trips
     /// them, tight enough to stop a diverging one within a few steps.
@@ -92,6 +94,17 @@ pub struct ShiftingDefaults {
     pub coefficient: Real,
 }
 
+/// Monaghan's (2000) tensile correction's parameters (off by default).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TensileDefaults {
+    /// The law (`monaghan`).
+    pub model: TensileModel,
+    /// `eps` at positive pressure: DualSPHysics' 0.01 (`GetKernelCubic_Tensil`).
+    pub epsilon_pos: Real,
+    /// `eps` at negative pressure: Monaghan's (2000) 0.2, DualSPHysics' too.
+    pub epsilon_neg: Real,
+}
+
 /// The damping zone's parameters (no damping zone by default).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DampingDefaults {
@@ -115,6 +128,7 @@ impl Default for Defaults {
             boundary: BoundaryDefaults { model: "dbc", slip: Slip::WallVelocity },
             force_precision: ForcePrecision::F64,
             shifting: ShiftingDefaults { model: ShiftingModel::Lind, coefficient: 2.0 },
+            tensile_correction: TensileDefaults { model: TensileModel::Monaghan, epsilon_pos: 0.01, epsilon_neg: 0.2 },
             damping: DampingDefaults { strength: 10.0 },
             density_band: 0.5,
             lost_fraction_limit: 0.01,
@@ -162,6 +176,9 @@ pub(crate) mod serde_default {
         force_precision: ForcePrecision = force_precision;
         shifting_model: ShiftingModel = shifting.model;
         shifting_coefficient: Real = shifting.coefficient;
+        tensile_model: TensileModel = tensile_correction.model;
+        tensile_epsilon_pos: Real = tensile_correction.epsilon_pos;
+        tensile_epsilon_neg: Real = tensile_correction.epsilon_neg;
         damping_strength: Real = damping.strength;
         density_band: Real = density_band;
         lost_fraction_limit: Real = lost_fraction_limit;

@@ -12,13 +12,17 @@ mod validate;
 use serde::{Deserialize, Serialize};
 
 use self::defaults::serde_default as default;
-pub use self::defaults::{BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, ViscosityDefaults};
+pub(crate) use self::defaults::serde_default;
+pub use self::defaults::{
+    BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, TensileDefaults, ViscosityDefaults,
+};
 pub use self::geometry::{BoxSpec, Damping, Obstacle};
 pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, ShiftingModel, Slip, Viscosity};
 use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
 use crate::motion::Paddle;
+pub use crate::physics::tensile::{TensileCorrection, TensileModel};
 use crate::probes::GaugeSpec;
 
 /// A complete scene.
@@ -66,6 +70,11 @@ pub struct Scene {
     /// Particle shifting; none by default.
     #[serde(default)]
     pub shifting: Option<Shifting>,
+    /// Monaghan's (2000) tensile correction (`physics/tensile.rs`; cubic spline only); none by
+    /// default. Left out of the scene's JSON when none, so scenes written before it existed
+    /// resolve to the same JSON.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tensile_correction: Option<TensileCorrection>,
     /// Inner faces of the tank (floor and side walls; the top is open).
     pub tank: BoxSpec,
     #[serde(default)]

@@ -246,7 +246,7 @@ impl Scene {
         Ok(())
     }
 
-    /// Viscosity, diffusion, integrator, shifting and wall thickness.
+    /// Viscosity, diffusion, integrator, shifting, tensile correction and wall thickness.
     fn validate_numerics(&self) -> Result<()> {
         let dim = self.dim;
         match self.viscosity {
@@ -290,6 +290,9 @@ impl Scene {
                     format!("must lie strictly between 0 and dim = {dim} (the bulk's particle divergence), got {t}"),
                 ));
             }
+        }
+        if let Some(t) = &self.tensile_correction {
+            t.validate(self.kernel)?;
         }
         if let Some(0) = self.boundary_layers {
             return Err(Error::invalid("boundary_layers", "must be >= 1"));

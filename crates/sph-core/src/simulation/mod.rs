@@ -65,6 +65,8 @@ pub struct Params {
     pub shifting: Option<Real>,
     /// Particle shifting's law, "lind" or "delta_plus" (none without shifting).
     pub shifting_model: Option<&'static str>,
+    /// Monaghan's (2000) tensile correction: "monaghan", or none without it.
+    pub tensile_correction: Option<&'static str>,
     /// Arithmetic of the force loop's pair terms: "f64" or "f32".
     pub force_precision: &'static str,
     /// Smallest time step allowed before the run is declared unstable [s].
@@ -503,6 +505,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D,
             boundary: self.walls.name(),
             shifting: s.shifting.map(|sh| sh.coefficient),
             shifting_model: s.shifting.map(|sh| sh.model.name()),
+            tensile_correction: s.tensile_correction.map(|t| t.model.name()),
             dt_floor: self.dt_floor,
         }
     }
