@@ -323,11 +323,12 @@ def run_against(args: Any) -> dict[str, Any]:
     if not args.xml:
         raise CliError("--xml: name at least one DualSPHysics case XML with --against")
     cases = xml_cases(args.xml)
-    interval, rounds, cpus = args.interval, args.rounds, parse_cpus(args.cpu)
+    interval, rounds = args.interval, args.rounds
     if not (math.isfinite(interval) and interval > 0):
         raise CliError(f"--interval: a positive number of simulated seconds, got {interval}")
     if rounds < 1:
         raise CliError(f"--rounds: must be at least 1, got {rounds}")
+    cpus = parse_cpus(args.cpu)
     if shutil.which("taskset") is None:
         raise CliError("--against: needs taskset (util-linux) to pin each run to one core")
     keep = args.workdir is not None
