@@ -5,7 +5,6 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use sph_core::math::{Dim, Dim2, Dim3, Vector};
 use sph_core::neighbours::{CellGrid, GROUP_FLUID};
-use sph_core::physics::{DIFF_FOURTAKAS, VISC_ARTIFICIAL};
 use sph_core::{Scene, Solver, WendlandC2};
 
 /// DualSPHysics' CaseDambreakVal2D geometry (column 1 x 2 m in a 4 m tank) and a 3D analogue.
@@ -25,7 +24,7 @@ fn dambreak(dim: usize, dp: f64) -> Scene {
 }
 
 fn neighbour_search<D: Dim>(c: &mut Criterion, name: &str, scene: Scene) {
-    let solver = Solver::<D, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+    let solver = Solver::<D, WendlandC2>::new(scene).expect("solver");
     let p = solver.particles();
     let pos: Vec<D::V> = p.pos.clone();
     let n = pos.len();
@@ -63,7 +62,7 @@ fn neighbour_search<D: Dim>(c: &mut Criterion, name: &str, scene: Scene) {
 }
 
 fn force_loop<D: Dim>(c: &mut Criterion, name: &str, scene: Scene) {
-    let mut solver = Solver::<D, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+    let mut solver = Solver::<D, WendlandC2>::new(scene).expect("solver");
     let n = solver.particles().len();
     let mut group = c.benchmark_group(format!("forces/{name}"));
     group.throughput(Throughput::Elements(n as u64));

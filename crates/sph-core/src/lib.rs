@@ -1,8 +1,9 @@
 //! WaterSim's weakly compressible SPH core.
 //!
 //! A [`Scene`] (plain serde data) is checked and turned by [`build`] into a solver specialised at
-//! compile time for its dimension, kernel, viscosity model and density diffusion (DESIGN.md
-//! section 5): terms a scene does not enable cost no arithmetic in the hot loop and no memory.
+//! compile time for its dimension and kernel, whose fluid force loop is specialised for its
+//! viscosity model and density diffusion (DESIGN.md section 5): terms a scene does not enable
+//! cost no arithmetic in the hot loop and no memory.
 //! The solver is driven through the object-safe [`Simulation`] trait.
 
 pub mod absorption;
@@ -31,8 +32,6 @@ pub use scene::{Damping, Diffusion, Integrator, Obstacle, Scene, Viscosity};
 pub use simulation::{Checkpoint, Interpolated, Params, Simulation, Snapshot, SnapshotExchange, Solver};
 pub use threads::on_threads;
 
-use physics::{diff_code, visc_code, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR, VISC_LAMINAR_SPS};
-
 /// Builds the solver specialised for the scene's options.
 pub fn build(scene: Scene) -> Result<Box<dyn Simulation>> {
     scene.validate()?;
@@ -55,20 +54,5 @@ fn build_dim<D: Dim>(scene: Scene) -> Result<Box<dyn Simulation>> {
 }
 
 fn build_kernel<D: Dim, K: Kernel>(scene: Scene) -> Result<Box<dyn Simulation>> {
-    macro_rules! solver {
-        ($v:expr, $d:expr) => {
-            Ok(Box::new(Solver::<D, K, { $v }, { $d }>::new(scene)?))
-        };
-    }
-    match (visc_code(&scene.viscosity), diff_code(&scene.diffusion)) {
-        (VISC_ARTIFICIAL, DIFF_NONE) => solver!(VISC_ARTIFICIAL, DIFF_NONE),
-        (VISC_ARTIFICIAL, DIFF_MOLTENI) => solver!(VISC_ARTIFICIAL, DIFF_MOLTENI),
-        (VISC_ARTIFICIAL, DIFF_FOURTAKAS) => solver!(VISC_ARTIFICIAL, DIFF_FOURTAKAS),
-        (VISC_LAMINAR, DIFF_NONE) => solver!(VISC_LAMINAR, DIFF_NONE),
-        (VISC_LAMINAR, DIFF_MOLTENI) => solver!(VISC_LAMINAR, DIFF_MOLTENI),
-        (VISC_LAMINAR, DIFF_FOURTAKAS) => solver!(VISC_LAMINAR, DIFF_FOURTAKAS),
-        (VISC_LAMINAR_SPS, DIFF_NONE) => solver!(VISC_LAMINAR_SPS, DIFF_NONE),
-        (VISC_LAMINAR_SPS, DIFF_MOLTENI) => solver!(VISC_LAMINAR_SPS, DIFF_MOLTENI),
-        (_, _) => solver!(VISC_LAMINAR_SPS, DIFF_FOURTAKAS),
-    }
+    Ok(Box::new(Solver::<D, K>::new(scene)?))
 }

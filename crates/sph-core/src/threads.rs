@@ -91,6 +91,19 @@ pub fn for_each_chunk<R: Send>(
     op: impl Fn(usize) -> R + Sync,
     merge: impl Fn(R, R) -> R + Sync,
 ) -> R {
+    chunks_of::<R>(n, &identity, &op, &merge)
+}
+
+/// [`for_each_chunk`] compiled once per result type rather than once per caller: the callers
+/// are many (the force loop in each of its variants), and the scheduling and rayon's `join`
+/// machinery was compiled again around each of them (docs/benchmarks.md, "The release build").
+/// The price is one indirect call per chunk.
+fn chunks_of<R: Send>(
+    n: usize,
+    identity: &(dyn Fn() -> R + Sync),
+    op: &(dyn Fn(usize) -> R + Sync),
+    merge: &(dyn Fn(R, R) -> R + Sync),
+) -> R {
     let threads = rayon::current_num_threads();
     if threads == 1 || n <= 1 || n > u32::MAX as usize {
         return (0..n).fold(identity(), |acc, c| merge(acc, op(c)));

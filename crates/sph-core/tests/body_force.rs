@@ -2,7 +2,6 @@
 //! (Archimedes: `rho0 g V` upwards, no horizontal force), with DBC and Adami walls.
 
 use sph_core::math::Dim2;
-use sph_core::physics::{DIFF_FOURTAKAS, VISC_ARTIFICIAL};
 use sph_core::{Scene, Simulation, Solver, WendlandC2};
 
 /// The submerged box [m]: 10 x 6 dp, its top 8 dp below the surface, its bottom 6 dp above the
@@ -35,7 +34,7 @@ fn a_submerged_box_feels_its_buoyancy() {
     let ([x0, z0], [x1, z1]) = BOX;
     let buoyancy = 1000.0 * 9.81 * (x1 - x0) * (z1 - z0);
     for boundary in ["dbc", "adami"] {
-        let mut sim = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(tank_with_box(boundary)).expect("solver");
+        let mut sim = Solver::<Dim2, WendlandC2>::new(tank_with_box(boundary)).expect("solver");
         sim.run_until(0.1).expect("stable");
         let g = &sim.gauges()[0];
         assert_eq!((g.kind, g.width), ("force", 3));
@@ -86,7 +85,7 @@ fn a_box_standing_in_a_corner_feels_the_hydrostatic_load() {
                 "gauges": [{{"type": "force", "name": "box", "obstacle": 0, "point": [0.1, 0.0], "interval": 0.01}}]}}"#
         ))
         .expect("valid scene");
-        let mut sim = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+        let mut sim = Solver::<Dim2, WendlandC2>::new(scene).expect("solver");
         sim.run_until(0.1).expect("stable");
         let (fx, fz, _) = mean_after(&sim, 0.02);
         println!("{boundary}: Fx / exact {:.4}, Fz / exact {:.4}", fx / fx_exact, fz / fz_exact);

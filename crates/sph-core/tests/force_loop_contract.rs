@@ -15,7 +15,7 @@ type V = <Dim2 as sph_core::Dim>::V;
 #[test]
 fn fluid_forces_refuses_arrays_that_do_not_cover_the_grid() {
     let json = r#"{"dim": 2, "dp": 0.05, "tank": {"min": [0, 0], "max": [1, 1]}, "fluid": [{"min": [0, 0], "max": [0.5, 0.5]}]}"#;
-    let solver = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(
+    let solver = Solver::<Dim2, WendlandC2>::new(
         Scene::from_json(json).expect("scene"),
     )
     .expect("solver");

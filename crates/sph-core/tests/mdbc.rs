@@ -4,10 +4,9 @@
 
 use sph_core::geometry::ghost_offsets;
 use sph_core::math::Dim2;
-use sph_core::physics::{DIFF_FOURTAKAS, VISC_ARTIFICIAL};
 use sph_core::{Scene, Solver, WendlandC2};
 
-type Tank2 = Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>;
+type Tank2 = Solver<Dim2, WendlandC2>;
 
 /// 0.3 m of water in a 0.6 m x 0.5 m tank at dp = 0.02 m, with a submerged box
 /// [0.2, 0.4] x [0.1, 0.2] and what `extra` adds.

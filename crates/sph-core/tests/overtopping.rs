@@ -4,13 +4,12 @@
 
 use sph_core::math::Dim2;
 use sph_core::particles::{KIND_EXCLUDED, KIND_FLUID};
-use sph_core::physics::{DIFF_FOURTAKAS, VISC_ARTIFICIAL};
 use sph_core::{Scene, Simulation, Solver, WendlandC2};
 
 const DP: f64 = 0.04;
 const SECTION: f64 = 0.7;
 
-type DamBreak = Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>;
+type DamBreak = Solver<Dim2, WendlandC2>;
 
 fn dam_break() -> DamBreak {
     let scene = Scene::from_json(&dam_break_json_with_section(SECTION)).expect("valid scene");

@@ -2,7 +2,6 @@
 //! staying still, and results independent of the thread count.
 
 use sph_core::math::{Dim2, Vector};
-use sph_core::physics::{DIFF_FOURTAKAS, DIFF_MOLTENI, VISC_ARTIFICIAL};
 use sph_core::{Scene, Solver, WendlandC2};
 
 fn tank(extra: &str) -> Scene {
@@ -34,7 +33,7 @@ fn density_bump_spreads_under_molteni_diffusion() {
     // No gravity: uniform density, one particle denser. Diffusion must lower its density and
     // raise its neighbours'; without the bump every rate is zero.
     let scene = tank(r#", "gravity": 0.0, "diffusion": {"model": "molteni", "delta": 0.1}, "h_swl": 0.3"#);
-    let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_MOLTENI>::new(scene).expect("solver");
+    let mut s = Solver::<Dim2, WendlandC2>::new(scene).expect("solver");
     let fs = s.particles().fluid_start();
     let rho0 = s.constants().rho0;
     s.particles_mut().rho.iter_mut().for_each(|r| *r = rho0);
@@ -60,9 +59,9 @@ fn density_bump_spreads_under_molteni_diffusion() {
 #[test]
 fn fourtakas_diffusion_vanishes_on_a_hydrostatic_column() {
     let scene = tank(r#", "diffusion": {"model": "fourtakas", "delta": 0.1}"#);
-    let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene.clone()).expect("solver");
+    let mut s = Solver::<Dim2, WendlandC2>::new(scene.clone()).expect("solver");
     let scene_m = tank(r#", "diffusion": {"model": "molteni", "delta": 0.1}"#);
-    let mut m = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_MOLTENI>::new(scene_m).expect("solver");
+    let mut m = Solver::<Dim2, WendlandC2>::new(scene_m).expect("solver");
     s.compute_forces();
     m.compute_forces();
     // Interior particles (away from the walls and the free surface) at rest in hydrostatic
@@ -113,7 +112,7 @@ fn adami_walls_carry_the_hydrostatic_pressure() {
     // extrapolated to it, p = rho0 g (d - z_w), below the floor and behind the side walls alike;
     // wall particles above the water get rho0 (no pressure).
     let scene = tank(r#", "boundary": {"model": "adami"}"#);
-    let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+    let mut s = Solver::<Dim2, WendlandC2>::new(scene).expect("solver");
     s.compute_forces();
     let (c, p) = (*s.constants(), s.particles());
     let (mut checked, mut dry) = (0, 0);
@@ -158,7 +157,7 @@ fn shifting_evens_out_a_disordered_particle_set() {
     let dp = 0.03;
     let run = |extra: &str| {
         let scene = tank_at(dp, extra);
-        let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(scene).expect("solver");
+        let mut s = Solver::<Dim2, WendlandC2>::new(scene).expect("solver");
         let fs = s.particles().fluid_start();
         let mut seed = 12345u64;
         let mut next = || {

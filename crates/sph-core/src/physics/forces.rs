@@ -13,6 +13,7 @@ use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
 use crate::particles::KIND_EXCLUDED;
+use crate::scene::{Diffusion, Viscosity};
 
 /// Calls `f(b, r_ab, r_ab^2, |r_ab|)` for every particle `b != a` of `group` inside the kernel
 /// support of the point `pa`, in the grid's fixed order.
@@ -85,6 +86,32 @@ impl StepLimits {
             (self.min_dt_cv, self.cv_slot)
         };
         StepLimits { max_acc, min_dt_cv, acc_slot, cv_slot }
+    }
+}
+
+/// A fluid force loop ([`fluid_forces`] for one viscosity model and one density diffusion).
+pub type FluidForceLoop<D, K> =
+    fn(&Constants, &K, &CellGrid<D>, Fields<'_, D>, &mut [<D as Dim>::V], &mut [Real]) -> StepLimits;
+
+/// The fluid force loop of a scene's viscosity model and density diffusion, chosen once when the
+/// solver is built: the only place where the two become compile-time constants of the loop
+/// (terms a scene leaves off cost nothing in it). The rest of the solver is compiled once per
+/// dimension and kernel, not once per model pair.
+pub fn fluid_force_loop<D: Dim, K: Kernel>(viscosity: &Viscosity, diffusion: &Diffusion) -> FluidForceLoop<D, K> {
+    use super::{diff_code, visc_code, VISC_LAMINAR};
+    macro_rules! by_diffusion {
+        ($v:expr) => {
+            match diff_code(diffusion) {
+                DIFF_NONE => fluid_forces::<D, K, { $v }, DIFF_NONE>,
+                DIFF_MOLTENI => fluid_forces::<D, K, { $v }, DIFF_MOLTENI>,
+                _ => fluid_forces::<D, K, { $v }, DIFF_FOURTAKAS>,
+            }
+        };
+    }
+    match visc_code(viscosity) {
+        VISC_ARTIFICIAL => by_diffusion!(VISC_ARTIFICIAL),
+        VISC_LAMINAR => by_diffusion!(VISC_LAMINAR),
+        _ => by_diffusion!(VISC_LAMINAR_SPS),
     }
 }
 

@@ -57,7 +57,7 @@ impl Findings {
 /// cache from one of the chunk's loops to the next.
 const SWEEP_CHUNK: usize = 2048;
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Solver<D, K> {
     /// Advances every particle by `rule` over `dt`. With `last` (the step's last sweep) it then
     /// shifts and damps the fluid, tests every slot for NaN and for its density band, and
     /// excludes fluid particles outside the domain; the paddle must already be at the step's end.

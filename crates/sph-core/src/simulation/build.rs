@@ -11,11 +11,12 @@ use crate::math::{Dim, Real, Vector};
 use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::particles::{Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING, PERMUTE_BLOCK};
 use crate::physics::eos::density_at_pressure;
-use crate::physics::{Constants, VISC_LAMINAR_SPS};
+use crate::physics::forces::fluid_force_loop;
+use crate::physics::Constants;
 use crate::probes::{GaugeRecord, GaugeSpec};
-use crate::scene::{Integrator, Scene};
+use crate::scene::{Integrator, Scene, Viscosity};
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Solver<D, K> {
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
         let c = Constants::new(&scene);
@@ -80,7 +81,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
                 History::Verlet { vel_prev: p.vel.clone(), rho_prev: p.rho.clone(), euler_every }
             }
         };
-        let tau = if VISC == VISC_LAMINAR_SPS { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
+        let tau = if matches!(scene.viscosity, Viscosity::LaminarSps { .. }) { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
         let shift = scene.shifting.map(|sh| ShiftState {
             model: sh.model,
             u_max: 0.0,
@@ -94,10 +95,12 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let blocks = n.div_ceil(PERMUTE_BLOCK);
         let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
         let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
+        let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion);
         let mut solver = Self {
             scene,
             c,
             kernel,
+            fluid_loop,
             p,
             grid,
             history,

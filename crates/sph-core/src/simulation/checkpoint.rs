@@ -35,7 +35,7 @@ pub struct Checkpoint {
 }
 
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Solver<D, K> {
     /// The state to continue this run from ([`Checkpoint`]).
     pub(super) fn checkpoint_state(&self) -> Checkpoint {
         let (velocities_prev, densities_prev) = match &self.history {

@@ -33,7 +33,7 @@ use crate::particles::{mark_moved_blocks, permute_carried, Carried, Particles, K
 use crate::probes::{GaugeRecord, ProbeView};
 use crate::threads::with_workers_polling;
 use crate::physics::eos::pressure;
-use crate::physics::forces::Fields;
+use crate::physics::forces::{Fields, FluidForceLoop};
 use crate::physics::Constants;
 use crate::scene::{Integrator, Scene, ShiftingModel};
 
@@ -195,10 +195,12 @@ struct Scratch {
     gather: Vec<u64>,
 }
 
-pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
+pub struct Solver<D: Dim, K: Kernel> {
     scene: Scene,
     c: Constants,
     kernel: K,
+    /// The fluid force loop of the scene's viscosity model and density diffusion.
+    fluid_loop: FluidForceLoop<D, K>,
     p: Particles<D>,
     grid: CellGrid<D>,
     history: History<D>,
@@ -237,7 +239,7 @@ pub struct Solver<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> {
     snapshots: Arc<SnapshotExchange>,
 }
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Solver<D, K> {
     /// Pairs one fluid force evaluation sums over: each fluid particle that is not excluded with
     /// every other particle, of any group, closer than the support, at the present positions.
     /// The cost of a step is about proportional to it; per particle it depends on how much of a
@@ -382,7 +384,7 @@ fn flat<V: Vector>(v: &[V]) -> &[Real] {
     bytemuck::cast_slice(v)
 }
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Simulation for Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
     fn dim(&self) -> usize {
         D::DIM
     }

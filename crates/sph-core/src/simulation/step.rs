@@ -13,12 +13,11 @@ use crate::math::{Dim, Real, Vector};
 use crate::motion::{Paddle, PaddlePose};
 use crate::neighbours::{GROUP_FLUID, GROUP_MOVING};
 use crate::phases::{self, Phase};
-use crate::physics::forces::{fluid_forces, shifting_fields, sps_stress, Fields, StepLimits};
+use crate::physics::forces::{shifting_fields, sps_stress, Fields, StepLimits};
 use crate::physics::delta_plus::delta_plus_fields;
-use crate::physics::VISC_LAMINAR_SPS;
-use crate::scene::ShiftingModel;
+use crate::scene::{ShiftingModel, Viscosity};
 
-impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF> {
+impl<D: Dim, K: Kernel> Solver<D, K> {
     /// Places the paddle particles where the motion law puts them at time `t`, with its velocity.
     pub(super) fn move_boundaries(&mut self, t: Real) {
         let Some(pose) = self.paddle_pose(t) else { return };
@@ -66,7 +65,7 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         };
         let moving = MovingWalls::<D> { acc: &moving_acc, pose: self.paddle_pose(paddle_time) };
         self.walls.before_forces(&c, &self.kernel, &self.grid, &mut self.p, &moving);
-        if VISC == VISC_LAMINAR_SPS {
+        if matches!(self.scene.viscosity, Viscosity::LaminarSps { .. }) {
             let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
         }
@@ -74,8 +73,8 @@ impl<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8> Solver<D, K, VISC, DIFF>
         let p = &mut self.p;
         let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, fluid_start: fs };
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
-        let (kernel, grid) = (&self.kernel, &self.grid);
-        let mut fluid = || fluid_forces::<D, K, VISC, DIFF>(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
+        let (kernel, grid, fluid_loop) = (&self.kernel, &self.grid, self.fluid_loop);
+        let mut fluid = || fluid_loop(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
         let limits = self.walls.forces(&c, kernel, grid, fields, drho_walls, &mut fluid);
         timer.lap(Phase::Forces);
         limits

@@ -12,7 +12,7 @@ use crate::physics::forces::fluid_forces_scalar;
 use crate::physics::{DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR};
 
 fn check<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(json: &str) {
-    let mut s = Solver::<D, K, VISC, DIFF>::new(Scene::from_json(json).expect("scene")).expect("solver");
+    let mut s = Solver::<D, K>::new(Scene::from_json(json).expect("scene")).expect("solver");
     s.step(40).expect("stable");
     s.compute_forces();
     let n = s.p.n_fluid();
@@ -79,7 +79,7 @@ fn fourtakas_diffusion_leaves_still_water_alone() {
                 "fluid": [{{"min": [0, 0], "max": [1.5, 0.3]}}], "boundary": {{"model": "{boundary}"}},
                 "diffusion": {{"model": "fourtakas", "delta": 0.1}}, "force_precision": "{precision}"}}"#
         );
-        let mut s = Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene"))
+        let mut s = Solver::<Dim2, WendlandC2>::new(Scene::from_json(&json).expect("scene"))
             .expect("solver");
         s.compute_forces();
         let fs = s.p.fluid_start();
@@ -120,7 +120,7 @@ fn cubic_laminar_molteni_and_no_diffusion() {
 
 #[test]
 fn the_monitor_names_the_lowest_id_among_bad_particles_in_any_chunk() {
-    type S = Solver<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>;
+    type S = Solver<Dim2, WendlandC2>;
     // 2D dam break of dp 0.005: 4,800 fluid particles, three of the sweep's chunks
     let json = r#"{"dim": 2, "dp": 0.005, "tank": {"min": [0, 0], "max": [1.0, 0.6]}, "fluid": [{"min": [0, 0], "max": [0.3, 0.4]}]}"#;
     let mut s = S::new(Scene::from_json(json).expect("scene")).expect("solver");
@@ -166,9 +166,9 @@ fn fluid_pair_count_is_every_pair_within_the_support() {
             pairs
         };
         let mut s: Box<dyn super::Simulation> = if dim == 2 {
-            Box::new(Solver::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene")).expect("solver"))
+            Box::new(Solver::<Dim2, WendlandC2>::new(Scene::from_json(&json).expect("scene")).expect("solver"))
         } else {
-            Box::new(Solver::<Dim3, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene")).expect("solver"))
+            Box::new(Solver::<Dim3, WendlandC2>::new(Scene::from_json(&json).expect("scene")).expect("solver"))
         };
         assert_eq!(s.fluid_pairs(), count(s.as_ref()));
         s.step(150).expect("stable");
@@ -199,7 +199,7 @@ fn cubic_with_the_tensile_correction_2d_and_3d() {
 #[test]
 fn tensile_correction_adds_monaghans_term_to_every_fluid_and_wall_pair() {
     let json = dambreak(2, r#", "kernel": "cubic_spline", "tensile_correction": {}"#);
-    let mut s = Solver::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene")).expect("solver");
+    let mut s = Solver::<Dim2, CubicSpline>::new(Scene::from_json(&json).expect("scene")).expect("solver");
     s.step(40).expect("stable");
     s.compute_forces();
     for (i, rho) in s.p.rho.iter_mut().enumerate() {
@@ -267,7 +267,7 @@ fn dam_break_with_the_tensile_correction_is_stable_and_differs() {
             r#"{{"dim": 2, "dp": 0.03, "kernel": "cubic_spline", "tank": {{"min": [0, 0], "max": [0.8, 0.6]}},
                 "fluid": [{{"min": [0, 0], "max": [0.3, 0.4]}}] {extra}}}"#
         );
-        let mut s = Solver::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS>::new(Scene::from_json(&json).expect("scene")).expect("solver");
+        let mut s = Solver::<Dim2, CubicSpline>::new(Scene::from_json(&json).expect("scene")).expect("solver");
         let mut tension = 0usize;
         while s.time < 0.35 {
             s.step(20).expect("stable");
