@@ -253,6 +253,16 @@ def test_runup_gauge_is_laid_along_the_slope_above_the_bed() -> None:
     assert all(g["type"] != "runup" for g in scene().to_scene()["gauges"])
 
 
+def test_runup_gauge_takes_the_wet_front_method_and_refuses_an_unknown_one() -> None:
+    beach = ws.PlaneBeach(toe=2.0, slope=0.1)
+    flume = ws.Flume(length=6.0, depth=0.3, beach=beach)
+    sc = flume.scene(regular(), dp=0.02, runup=ws.RunupGauge(method="wet_front"))
+    (spec,) = [g for g in sc.to_scene()["gauges"] if g["type"] == "runup"]
+    assert spec["method"] == "wet_front"
+    with pytest.raises(SceneError, match="runup.method"):
+        ws.RunupGauge(method="wetfront")
+
+
 def test_submerged_bar_profile_has_no_runup_and_keeps_its_shape() -> None:
     bar = ws.ProfileBeach(x=(6.0, 12.0, 14.0, 17.0), z=(0.0, 0.3, 0.3, 0.0))
     sc = ws.Flume(length=25.0, depth=0.4, beach=bar).scene(

@@ -78,7 +78,7 @@ def test_every_model_class_declares_its_scene_file_tag_and_choices() -> None:
         assert len(set(tags)) == len(tags), union
     assert flume.TAGS[ws.RegularWave] == "regular" and flume.TAGS[ws.VelocityWindow] == "window"
     assert flume.CHOICES[(ws.IrregularWave, "spectrum")] == tuple(flume.SPECTRA)
-    assert flume.CHOICES[(ws.RunupGauge, "method")] == flume.SURFACE_METHODS
+    assert flume.CHOICES[(ws.RunupGauge, "method")] == flume.RUNUP_METHODS
 
 
 def test_the_core_gauge_types_are_the_gauge_classes_tags() -> None:

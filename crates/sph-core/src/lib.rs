@@ -27,7 +27,7 @@ pub use error::{Error, InstabilityKind, Result};
 pub use kernel::{CubicSpline, Kernel, KernelKind, WendlandC2};
 pub use math::{Dim, Dim2, Dim3, Real};
 pub use motion::{MotionLaw, Paddle, PaddleKind};
-pub use probes::{GaugeRecord, GaugeSpec, SurfaceMethod};
+pub use probes::{GaugeRecord, GaugeSpec, RunupMethod, SurfaceMethod};
 pub use scene::{Damping, Diffusion, Integrator, Obstacle, Scene, Viscosity};
 pub use simulation::{Checkpoint, Interpolated, Params, Simulation, Snapshot, SnapshotExchange, Solver};
 pub use threads::on_threads;

@@ -37,6 +37,34 @@ pub enum SurfaceMethod {
     Particle,
 }
 
+/// How a run-up gauge finds the wet front on the slope.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RunupMethod {
+    /// The last point along the segment where the kernel volume sum marks water
+    /// ([`SurfaceMethod::Kernel`]'s test): it sees only water as deep as the segment lies
+    /// above the bed.
+    #[default]
+    Kernel,
+    /// The highest fluid particle within 1.5 dp of the segment.
+    Particle,
+    /// The wet front on the bed: the highest fluid particle that touches the bed, i.e. has a
+    /// fixed wall particle within [`WET_FRONT_CONTACT`] dp, among those within
+    /// [`WET_FRONT_BAND`] dp of the segment whose projection falls on it. Water one particle
+    /// thin counts, which a line above the bed cannot see (issue 30: the swash tip decides the
+    /// run-up). Records the particle's centre, which lies about dp/2 off the bed (the flume
+    /// zeroes its run-up on the reading at rest, so that offset cancels).
+    WetFront,
+}
+
+/// A fluid particle touches the bed when a fixed wall particle lies within this many dp of it:
+/// on a lattice the first fluid layer lies dp from the walls' first, so a thin swash layer
+/// touches and the layer above it (2 dp off) does not.
+pub const WET_FRONT_CONTACT: Real = 1.5;
+/// The wet front is looked for this many dp either side of a run-up segment, enough to reach
+/// the bed from a segment laid up to 2 dp above it, as the flume lays its run-up gauge (1.5 dp).
+pub const WET_FRONT_BAND: Real = 3.0;
+
 /// One gauge of a scene. Positions are full `dim`-vectors unless stated.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
@@ -62,7 +90,7 @@ pub enum GaugeSpec {
         start: Vec<Real>,
         end: Vec<Real>,
         #[serde(default)]
-        method: SurfaceMethod,
+        method: RunupMethod,
         interval: Real,
     },
     /// Fluid pressure at fixed points: the Shepard-normalised kernel interpolation of the fluid
@@ -451,6 +479,26 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
             .pipe_nan()
     }
 
+    /// [`RunupMethod::WetFront`] on the segment `a -> b`: the highest fluid particle within
+    /// [`WET_FRONT_BAND`] dp of the segment, its projection on it, with a fixed wall particle
+    /// within [`WET_FRONT_CONTACT`] dp; NaN if none.
+    pub fn wet_front(&self, a: D::V, b: D::V) -> Real {
+        let dp = self.c.dp;
+        let (band2, contact2) = ((WET_FRONT_BAND * dp).powi(2), (WET_FRONT_CONTACT * dp).powi(2));
+        let ab = b - a;
+        let inv = 1.0 / ab.length_squared();
+        let walls = &self.p.pos[..self.p.n_fixed];
+        self.highest_fluid(|x| {
+            let s = (x - a).dot(ab) * inv;
+            if !(0.0..=1.0).contains(&s) || (x - (a + ab * s)).length_squared() > band2 {
+                return false;
+            }
+            let mut touches = false;
+            self.grid.for_each_near(GROUP_FIXED, x, |w| touches |= (x - walls[w]).length_squared() <= contact2);
+            touches
+        })
+    }
+
     /// The Shepard sums ([`Self::shepard`]) at each of `points` (flattened, `dim` per point),
     /// each point's turned into its values by `read`, in the points' order.
     fn at_points<R>(&self, points: &[Real], read: R) -> Vec<Real>
@@ -489,8 +537,8 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                 GaugeSpec::Runup { start, end, method, .. } => {
                     let (a, b) = (D::V::from_slice(start), D::V::from_slice(end));
                     let z = match method {
-                        SurfaceMethod::Kernel => self.last_wet_along(a, b),
-                        SurfaceMethod::Particle => {
+                        RunupMethod::Kernel => self.last_wet_along(a, b),
+                        RunupMethod::Particle => {
                             let band2 = (3.0 * half) * (3.0 * half);
                             let ab = b - a;
                             let inv = 1.0 / ab.length_squared();
@@ -499,6 +547,7 @@ impl<D: Dim, K: Kernel> ProbeView<'_, D, K> {
                                 (x - (a + ab * s)).length_squared() <= band2
                             })
                         }
+                        RunupMethod::WetFront => self.wet_front(a, b),
                     };
                     rec.values.push(z);
                 }

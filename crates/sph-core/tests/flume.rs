@@ -172,3 +172,30 @@ fn bad_flume_fields_are_named() {
         "gauges": [{"type": "elevation", "name": "far", "position": [3.0, 0], "interval": 0.1}]}"#;
     assert!(matches!(Scene::from_json(json), Err(sph_core::Error::InvalidScene { field, .. }) if field == "gauges[0].position"));
 }
+
+/// The three run-up methods on a film one particle thick climbing the right-hand wall (x = 0.4)
+/// from the still water (0.1 m) to z = 0.2 m (particles up to 0.19 m), with a detached drop at
+/// z = 0.31 m, 2.5 dp off the wall: the wet front follows the film to its top and ignores the drop; the particle method,
+/// which takes any particle near its line, reads the drop; the kernel method, whose line lies
+/// 1.5 dp off the wall, does not see the film.
+#[test]
+fn wet_front_runup_follows_a_thin_film_and_ignores_a_drop() {
+    let dp = 0.02;
+    let x_line = 0.4 - 1.5 * dp;
+    let gauge = |name: &str, method: &str| {
+        format!(r#"{{"type": "runup", "name": "{name}", "start": [{x_line}, 0.02], "end": [{x_line}, 0.38], "method": "{method}", "interval": 0.01}}"#)
+    };
+    let gauges = [gauge("k", "kernel"), gauge("p", "particle"), gauge("w", "wet_front")].join(", ");
+    let json = format!(
+        r#"{{"dim": 2, "dp": {dp}, "coefh": 1.2, "h_swl": 0.1, "tank": {{"min": [0, 0], "max": [0.4, 0.4]}},
+            "fluid": [{{"min": [0, 0], "max": [0.4, 0.1]}}, {{"min": [0.375, 0.1], "max": [0.4, 0.2]}},
+                      {{"min": [0.335, 0.295], "max": [0.365, 0.325]}}],
+            "viscosity": {{"model": "artificial", "alpha": 0.01}}, "gauges": [{gauges}]}}"#
+    );
+    let sim = sph_core::build(Scene::from_json(&json).expect("valid scene")).expect("built");
+    let g = sim.gauges();
+    let (k, p, w) = (g[0].values[0], g[1].values[0], g[2].values[0]);
+    assert!((w - 0.19).abs() < 1e-9, "wet front at the film's top particle: {w}");
+    assert!((p - 0.31).abs() < 1e-9, "the particle method reads the drop: {p}");
+    assert!(k < 0.15, "the kernel line does not see the film: {k}");
+}

@@ -26,6 +26,7 @@ Series = tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]
 
 __all__ = [
     "GAUGE_TYPES",
+    "RUNUP_METHODS",
     "SURFACE_METHODS",
     "ElevationGauge",
     "ForceGauge",
@@ -64,6 +65,12 @@ highest point where the fluid's kernel volume sum fills half the space the walls
 (``S_fluid / (1 - S_wall) >= 0.5``: 0.5 away from walls, and right next to a side wall or bed
 too); ``"particle"``, the highest fluid particle
 near the gauge line (seed 001's method)."""
+
+
+RUNUP_METHODS: tuple[str, ...] = SURFACE_METHODS + ("wet_front",)
+"""Run-up methods: the surface methods along the gauge's segment, and ``"wet_front"``, the highest
+fluid particle touching the bed (a fixed wall particle within 1.5 dp) within 3 dp of the
+segment: water one particle thin counts, which a line above the bed cannot see."""
 
 
 RUNUP_OFFSET_DP = 1.5
@@ -554,7 +561,7 @@ class RunupGauge(_Gauge):
         start, end: the segment's ends [m], flume coordinates; ``None`` (both): laid automatically
             along the beach, ``1.5 dp`` above its surface, from below the lowest run-down up to
             the top of the slope.
-        method: ``"kernel"`` or ``"particle"``.
+        method: ``"kernel"``, ``"particle"`` or ``"wet_front"`` (see :data:`RUNUP_METHODS`).
         name: record name (default ``"runup"``).
         interval: sampling interval [s]; default the scene's ``sample_interval``.
     """
@@ -566,7 +573,7 @@ class RunupGauge(_Gauge):
     interval: float | None = None
 
     TAG: ClassVar[str] = "runup"
-    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": SURFACE_METHODS}
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": RUNUP_METHODS}
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
 
     def __post_init__(self) -> None:

@@ -20,6 +20,7 @@ seed 002 (Makris et al.) for Stansby & Feng (2005) breaking (:mod:`.stansby`).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import warnings
@@ -43,6 +44,7 @@ from ..flume import (
     FlumeSimulation,
     Piston,
     RegularWave,
+    RunupGauge,
     lattice_dp,
 )
 from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
@@ -706,6 +708,7 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
         return 0.5 * s.law.duration + s.shoreline / c + 1.0
 
     scene, notes = _with_until("solitary2d", items, until)
+    scene = dataclasses.replace(scene, runup=RunupGauge(method="wet_front"))
     clock = _Clock()
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     law = float(wt.synolakis_runup(height, depth, SOLITARY_SLOPE)) * depth
@@ -714,7 +717,8 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
     t, _, r = sim.gauges.uniform()
     t_max = float(t[int(np.nanargmax(r))]) if r is not None and np.any(np.isfinite(r)) else None
     cot = 1.0 / SOLITARY_SLOPE
-    details = {"runup_max": runup, "runup_law": law, "H_over_d": height / depth,
+    details = {"runup_max": runup, "runup_law": law, "runup_method": "wet_front",
+               "H_over_d": height / depth,
                "cot_beta": cot, "runup_ceiling": scene.tank_height - depth,
                "t_runup_max": t_max, "until": scene.until,
                "non_breaking_limit_H_over_d": 0.818 * cot ** (-10.0 / 9.0), "notes": notes,
@@ -977,14 +981,15 @@ CASES: dict[str, Case] = {
              "offset removed).", depth=0.4),
         Case("solitary2d", "non-breaking solitary wave, H/d = 0.15, 1:3 beach",
              "Synolakis (1987) R/d = 2.831 sqrt(cot beta) (H/d)^(5/4)", "wave height / dp",
-             0.045, (1.0, 1.5, 2.0), (1.0,), "runup", 0.10,
+             0.045, (2.0, 3.5, 5.0), (1.0,), "runup", 0.10,
              "maximum run-up within 10 % of the Synolakis law", _run_solitary,
              "Set up non-breaking for the law: H/d = 0.15 on a 1:3 beach, below the "
              "non-breaking limit H/d < 0.818 (cot beta)^(-10/9) = 0.24 (Synolakis 1987 as "
              "usually quoted). The built-in solitary2d default (H/d = 0.3 on 1:19.85) breaks, "
-             "and the law does not apply to it. The run-up is read by the flume's automatic "
-             "run-up gauge, a line 1.5 dp above the beach (`RunupGauge`): water thinner than "
-             "that (3.4-6.8 cm at these dp, against a law run-up of 13.7 cm) is not seen.",
+             "and the law does not apply to it. The run-up is the wet front on the bed "
+             "(`RunupGauge(method=\"wet_front\")`: the highest fluid particle with a wall "
+             "particle within 1.5 dp), zeroed on its reading at rest; the flume's default "
+             "gauge, a line 1.5 dp above the beach, cannot see water thinner than that.",
              report_details=("runup_max", "runup_law", "t_runup_max", "until"), depth=0.3),
         Case("kimmoun2d", "seed 001: regular waves plunging on a 1:15 beach, about 16 periods",
              "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
