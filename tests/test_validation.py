@@ -552,3 +552,21 @@ def test_long_flume_scene_and_its_settings() -> None:
     with pytest.raises(ValidateError, match="viscosity.alpha"):
         check_settings([("flume2d-long", 5.0)], ["viscosity.alpha=-1"])
     assert main(["validate", "tank2d", "--set", "alpha=0.1"]) == 2
+
+
+def test_solitary_scene_reads_the_wet_front_and_takes_wall_settings() -> None:
+    """solitary2d: the run-up gauge reads the wet front; ``--set`` reaches the wall model and
+    nothing that would change the wave or the beach."""
+    from watersim.validation.cases import solitary_scene
+    from watersim.validation.sweep import check_settings
+
+    dp = CASES["solitary2d"].dp(2.0)
+    scene, _ = solitary_scene(dp)
+    core = scene.to_scene()
+    (runup,) = [g for g in core["gauges"] if g["type"] == "runup"]
+    assert runup["method"] == "wet_front"
+    slip, _ = solitary_scene(dp, {"boundary": "mdbc", "boundary.slip": "free_slip"})
+    assert slip.to_scene()["boundary"] == {"model": "mdbc", "slip": "free_slip"}
+    assert slip.until == scene.until
+    with pytest.raises(ValidateError, match="--set: key 'beach.slope'"):
+        check_settings([("solitary2d", 2.0)], ["beach.slope=0.1"])

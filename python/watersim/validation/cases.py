@@ -47,7 +47,7 @@ from ..flume import (
     RunupGauge,
     lattice_dp,
 )
-from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
+from ..flume_cases import BEJI_BATTJES_FILES, FlumeCaseError, _load_csv, _Settings
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
 from ..scenes import DamBreak, Tank
 from ..simulation import Simulation
@@ -690,15 +690,32 @@ SOLITARY_SLOPE = 1.0 / 3.0
 """Beach slope of the run-up case: steep enough that H/d = 0.15 does not break."""
 
 
-def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
-    """solitary2d set up non-breaking: d = 0.3 m, H/d = 0.15 (H = 0.045 m), a 1:3 beach from
+SOLITARY_DEPTH, SOLITARY_HEIGHT = 0.3, 0.045
+"""Depth and wave height of the run-up case [m] (H/d = 0.15)."""
+
+
+def solitary_scene(dp: float, settings: Mapping[str, str] | None = None
+                   ) -> tuple[FlumeScene, list[str]]:
+    """solitary2d set up non-breaking at ``dp``, with ``--set``-style numerical ``settings``
+    (the wall model, say: ``boundary=mdbc`` and ``boundary.slip=free_slip``), and the
+    warnings its build gave (as notes): d = 0.3 m, H/d = 0.15 (H = 0.045 m), a 1:3 beach from
     x = 3 m, flume 4.8 m (walls d + d/2 = 0.45 m high, above the law's run-up of 0.137 m);
-    until = half the paddle motion + travel to the shoreline + 1 s, the same with ``quick``."""
-    dp = case.dp(res)
-    assert case.depth is not None
-    depth, height = case.depth, case.length
-    items = {"dp": repr(dp), "wave.height": repr(height), "beach.slope": repr(SOLITARY_SLOPE),
-             "beach.toe": "3.0", "flume.length": "4.8"}
+    until = half the paddle motion + travel to the shoreline + 1 s; the run-up gauge reads
+    the wet front.
+
+    Raises:
+        FlumeCaseError: a settings key that is not a numerical key of the flume cases.
+    """
+    depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
+    probe = _Settings(dict(settings or {}))
+    probe.numerics(dp=dp, **nm.FLUME_CASE)
+    unknown = sorted(k for k in (settings or {}) if k not in probe.keys or k in ("dp", "until"))
+    if unknown:
+        raise FlumeCaseError(f"--set: key {unknown[0]!r} is not a numerical setting of "
+                             f"solitary2d (dp and until follow from the case); valid keys: "
+                             f"{', '.join(sorted(k for k in probe.keys if k not in ('dp', 'until')))}")
+    items = {**(settings or {}), "dp": repr(dp), "wave.height": repr(height),
+             "beach.slope": repr(SOLITARY_SLOPE), "beach.toe": "3.0", "flume.length": "4.8"}
 
     def until(s: FlumeScene) -> float:
         assert s.law.duration is not None and s.shoreline is not None
@@ -708,7 +725,16 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
         return 0.5 * s.law.duration + s.shoreline / c + 1.0
 
     scene, notes = _with_until("solitary2d", items, until)
-    scene = dataclasses.replace(scene, runup=RunupGauge(method="wet_front"))
+    return dataclasses.replace(scene, runup=RunupGauge(method="wet_front")), notes
+
+
+def _run_solitary(case: Case, res: float, quick: bool, progress: bool,
+                  settings: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """solitary2d (:func:`solitary_scene`) at resolution ``res`` (H/dp); ``quick`` changes
+    nothing (the run is already as short as the run-up allows)."""
+    dp = case.dp(res)
+    depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
+    scene, notes = solitary_scene(dp, settings)
     clock = _Clock()
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     law = float(wt.synolakis_runup(height, depth, SOLITARY_SLOPE)) * depth
@@ -718,6 +744,7 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool) -> dict[s
     t_max = float(t[int(np.nanargmax(r))]) if r is not None and np.any(np.isfinite(r)) else None
     cot = 1.0 / SOLITARY_SLOPE
     details = {"runup_max": runup, "runup_law": law, "runup_method": "wet_front",
+               "settings": dict(settings or {}),
                "H_over_d": height / depth,
                "cot_beta": cot, "runup_ceiling": scene.tank_height - depth,
                "t_runup_max": t_max, "until": scene.until,
@@ -981,7 +1008,7 @@ CASES: dict[str, Case] = {
              "offset removed).", depth=0.4),
         Case("solitary2d", "non-breaking solitary wave, H/d = 0.15, 1:3 beach",
              "Synolakis (1987) R/d = 2.831 sqrt(cot beta) (H/d)^(5/4)", "wave height / dp",
-             0.045, (2.0, 3.5, 5.0), (1.0,), "runup", 0.10,
+             SOLITARY_HEIGHT, (2.0, 3.5, 5.0), (1.0,), "runup", 0.10,
              "maximum run-up within 10 % of the Synolakis law", _run_solitary,
              "Set up non-breaking for the law: H/d = 0.15 on a 1:3 beach, below the "
              "non-breaking limit H/d < 0.818 (cot beta)^(-10/9) = 0.24 (Synolakis 1987 as "
@@ -990,7 +1017,8 @@ CASES: dict[str, Case] = {
              "(`RunupGauge(method=\"wet_front\")`: the highest fluid particle with a wall "
              "particle within 1.5 dp), zeroed on its reading at rest; the flume's default "
              "gauge, a line 1.5 dp above the beach, cannot see water thinner than that.",
-             report_details=("runup_max", "runup_law", "t_runup_max", "until"), depth=0.3),
+             report_details=("runup_max", "runup_law", "t_runup_max", "until"),
+             depth=SOLITARY_DEPTH, scene=solitary_scene),
         Case("kimmoun2d", "seed 001: regular waves plunging on a 1:15 beach, about 16 periods",
              "seed 001 (Kimmoun & Branger 2007): x_b, H_B = 0.14 m; Schuttrumpf run-up",
              "wave height / dp", 0.114, (1.2, 1.7, 2.3), (1.2,), "breaker_height", 0.10,
