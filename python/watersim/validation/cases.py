@@ -20,7 +20,6 @@ seed 002 (Makris et al.) for Stansby & Feng (2005) breaking (:mod:`.stansby`).
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 import warnings
@@ -44,10 +43,9 @@ from ..flume import (
     FlumeSimulation,
     Piston,
     RegularWave,
-    RunupGauge,
     lattice_dp,
 )
-from ..flume_cases import BEJI_BATTJES_FILES, FlumeCaseError, _load_csv, _Settings
+from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
 from ..scenes import DamBreak, Tank
 from ..simulation import Simulation
@@ -60,6 +58,7 @@ from .absorption import (
 from .buchner import BUCHNER_H, WALL_MODELS, plot_buchner, run_buchner
 from .longflume import LONG_FLUME_WAVE, long_flume_scene, run_long_flume
 from .running import _Clock, _with_until, advance, make_record
+from .solitary import SOLITARY_DEPTH, SOLITARY_HEIGHT, SOLITARY_SLOPE, solitary_scene
 from .stansby import STANSBY_HEIGHT, stansby_metrics, stansby_until
 
 __all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
@@ -684,48 +683,6 @@ def _run_bar(case: Case, res: float, quick: bool, progress: bool) -> dict[str, A
 
 # ------------------------------------------------------------------------------------------------
 # solitary wave run-up
-
-
-SOLITARY_SLOPE = 1.0 / 3.0
-"""Beach slope of the run-up case: steep enough that H/d = 0.15 does not break."""
-
-
-SOLITARY_DEPTH, SOLITARY_HEIGHT = 0.3, 0.045
-"""Depth and wave height of the run-up case [m] (H/d = 0.15)."""
-
-
-def solitary_scene(dp: float, settings: Mapping[str, str] | None = None
-                   ) -> tuple[FlumeScene, list[str]]:
-    """solitary2d set up non-breaking at ``dp``, with ``--set``-style numerical ``settings``
-    (the wall model, say: ``boundary=mdbc`` and ``boundary.slip=free_slip``), and the
-    warnings its build gave (as notes): d = 0.3 m, H/d = 0.15 (H = 0.045 m), a 1:3 beach from
-    x = 3 m, flume 4.8 m (walls d + d/2 = 0.45 m high, above the law's run-up of 0.137 m);
-    until = half the paddle motion + travel to the shoreline + 1 s; the run-up gauge reads
-    the wet front.
-
-    Raises:
-        FlumeCaseError: a settings key that is not a numerical key of the flume cases.
-    """
-    depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
-    probe = _Settings(dict(settings or {}))
-    probe.numerics(dp=dp, **nm.FLUME_CASE)
-    unknown = sorted(k for k in (settings or {}) if k not in probe.keys or k in ("dp", "until"))
-    if unknown:
-        raise FlumeCaseError(f"--set: key {unknown[0]!r} is not a numerical setting of "
-                             f"solitary2d (dp and until follow from the case); valid keys: "
-                             f"{', '.join(sorted(k for k in probe.keys if k not in ('dp', 'until')))}")
-    items = {**(settings or {}), "dp": repr(dp), "wave.height": repr(height),
-             "beach.slope": repr(SOLITARY_SLOPE), "beach.toe": "3.0", "flume.length": "4.8"}
-
-    def until(s: FlumeScene) -> float:
-        assert s.law.duration is not None and s.shoreline is not None
-        c = float(wt.solitary_celerity(height, depth, s.g))
-        # Goring's motion is symmetric about the crest's release at half its duration; the
-        # run-up peaks within about a second of the crest reaching the shoreline
-        return 0.5 * s.law.duration + s.shoreline / c + 1.0
-
-    scene, notes = _with_until("solitary2d", items, until)
-    return dataclasses.replace(scene, runup=RunupGauge(method="wet_front")), notes
 
 
 def _run_solitary(case: Case, res: float, quick: bool, progress: bool,
