@@ -133,6 +133,20 @@ class _Settings(Overrides):
                 out[name] = value
         return out
 
+    def only_numerics(self, case: str) -> None:
+        """Refuses any item that is not a numerical key read by :meth:`numerics` (called
+        before), ``dp`` and ``until`` included: a validation case fixes them itself.
+
+        Raises:
+            FlumeCaseError: naming the first such key, the case and the valid keys.
+        """
+        valid = sorted(k for k in self.keys if k not in ("dp", "until"))
+        unknown = sorted(k for k in self.items if k not in valid)
+        if unknown:
+            raise FlumeCaseError(f"--set: key {unknown[0]!r} is not a numerical setting of "
+                                 f"{case} (dp and until follow from the case); valid keys: "
+                                 f"{', '.join(valid)}")
+
 
 def _quiet_scene(**kwargs: Any) -> FlumeScene:
     """A FlumeScene built without emitting wave-validity warnings (for sizing a case)."""

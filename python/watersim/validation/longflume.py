@@ -23,7 +23,7 @@ import numpy as np
 from .. import numerics as nm
 from .. import wave_theory as wt
 from ..flume import DampingZone, ElevationGauge, Flume, FlumeScene, Piston, RegularWave
-from ..flume_cases import FlumeCaseError, _Settings
+from ..flume_cases import _Settings
 from . import metrics as m
 from .running import _Clock, make_record
 
@@ -63,11 +63,7 @@ def long_flume_scene(dp: float, settings: Mapping[str, str] | None = None
     wl = float(wt.wavelength(period, d))
     s = _Settings(dict(settings or {}))
     num = s.numerics(dp=dp, **nm.FLUME_CASE, **nm.WAVE_CARRYING)
-    unknown = sorted(k for k in (settings or {}) if k not in s.keys or k in ("dp", "until"))
-    if unknown:
-        raise FlumeCaseError(f"--set: key {unknown[0]!r} is not a numerical setting of "
-                             f"flume2d-long (dp and until follow from the case); valid keys: "
-                             f"{', '.join(sorted(k for k in s.keys if k not in ('dp', 'until')))}")
+    s.only_numerics("flume2d-long")
     damping = LONG_FLUME_WAVELENGTHS + 0.5
     flume = Flume(length=round((damping + LONG_FLUME_DAMPING_L) * wl, 3), depth=d,
                   damping=DampingZone(length=round(LONG_FLUME_DAMPING_L * wl, 3)))

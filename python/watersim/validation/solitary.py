@@ -14,7 +14,7 @@ from collections.abc import Mapping
 from .. import numerics as nm
 from .. import wave_theory as wt
 from ..flume import FlumeScene, RunupGauge
-from ..flume_cases import FlumeCaseError, _Settings
+from ..flume_cases import _Settings
 from .running import _with_until
 
 SOLITARY_SLOPE = 1.0 / 3.0
@@ -40,12 +40,7 @@ def solitary_scene(dp: float, settings: Mapping[str, str] | None = None
     depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
     probe = _Settings(dict(settings or {}))
     probe.numerics(dp=dp, **nm.FLUME_CASE)
-    valid = sorted(k for k in probe.keys if k not in ("dp", "until"))
-    unknown = sorted(k for k in (settings or {}) if k not in valid)
-    if unknown:
-        raise FlumeCaseError(f"--set: key {unknown[0]!r} is not a numerical setting of "
-                             f"solitary2d (dp and until follow from the case); valid keys: "
-                             f"{', '.join(valid)}")
+    probe.only_numerics("solitary2d")
     items = {**(settings or {}), "dp": repr(dp), "wave.height": repr(height),
              "beach.slope": repr(SOLITARY_SLOPE), "beach.toe": "3.0", "flume.length": "4.8"}
 
