@@ -98,20 +98,20 @@ pub type FluidForceLoop<D, K> =
 /// (terms a scene leaves off cost nothing in it). The rest of the solver is compiled once per
 /// dimension and kernel, not once per model pair.
 pub fn fluid_force_loop<D: Dim, K: Kernel>(viscosity: &Viscosity, diffusion: &Diffusion) -> FluidForceLoop<D, K> {
-    use super::{diff_code, visc_code, VISC_LAMINAR};
+    use super::VISC_LAMINAR;
     macro_rules! by_diffusion {
         ($v:expr) => {
-            match diff_code(diffusion) {
-                DIFF_NONE => fluid_forces::<D, K, { $v }, DIFF_NONE>,
-                DIFF_MOLTENI => fluid_forces::<D, K, { $v }, DIFF_MOLTENI>,
-                _ => fluid_forces::<D, K, { $v }, DIFF_FOURTAKAS>,
+            match diffusion {
+                Diffusion::None => fluid_forces::<D, K, { $v }, DIFF_NONE>,
+                Diffusion::Molteni { .. } => fluid_forces::<D, K, { $v }, DIFF_MOLTENI>,
+                Diffusion::Fourtakas { .. } => fluid_forces::<D, K, { $v }, DIFF_FOURTAKAS>,
             }
         };
     }
-    match visc_code(viscosity) {
-        VISC_ARTIFICIAL => by_diffusion!(VISC_ARTIFICIAL),
-        VISC_LAMINAR => by_diffusion!(VISC_LAMINAR),
-        _ => by_diffusion!(VISC_LAMINAR_SPS),
+    match viscosity {
+        Viscosity::Artificial { .. } => by_diffusion!(VISC_ARTIFICIAL),
+        Viscosity::Laminar { .. } => by_diffusion!(VISC_LAMINAR),
+        Viscosity::LaminarSps { .. } => by_diffusion!(VISC_LAMINAR_SPS),
     }
 }
 

@@ -28,22 +28,6 @@ pub const DIFF_NONE: u8 = 0;
 pub const DIFF_MOLTENI: u8 = 1;
 pub const DIFF_FOURTAKAS: u8 = 2;
 
-pub fn visc_code(v: &Viscosity) -> u8 {
-    match v {
-        Viscosity::Artificial { .. } => VISC_ARTIFICIAL,
-        Viscosity::Laminar { .. } => VISC_LAMINAR,
-        Viscosity::LaminarSps { .. } => VISC_LAMINAR_SPS,
-    }
-}
-
-pub fn diff_code(d: &Diffusion) -> u8 {
-    match d {
-        Diffusion::None => DIFF_NONE,
-        Diffusion::Molteni { .. } => DIFF_MOLTENI,
-        Diffusion::Fourtakas { .. } => DIFF_FOURTAKAS,
-    }
-}
-
 /// Constants of a run, derived once from the scene.
 #[derive(Clone, Copy, Debug)]
 pub struct Constants {
