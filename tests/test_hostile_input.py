@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import watersim as ws
@@ -249,6 +249,7 @@ def test_any_long_set_key_is_refused_quoting_its_start(levels: int) -> None:
 @settings(max_examples=50, deadline=None)
 @given(k=st.integers(0, 10**6), every=st.floats(1e-6, 10.0),
        time=st.floats(0.0, 1e300, allow_subnormal=False))
+@example(k=0, every=4.5, time=3.982928839205582e16)  # the quotient rounds up past the stop
 def test_the_next_sample_stop_is_found_at_once(k: int, every: float, time: float) -> None:
     """The run's next stop after a step far past its sample times (gravity = 1e-300 gave one
     step of 1e147 s: 1e149 additions) is the first ``t0 + k every`` beyond the time."""

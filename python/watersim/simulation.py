@@ -388,16 +388,27 @@ class Snapshot:
 
 
 def _next_stop(k: int, t0: float, every: float, time: float) -> int:
-    """The first ``k' > k`` with ``t0 + k' every > time``: found by division, not counted up
-    to (one step of 1e147 s past 0.01 s samples would be 1e149 additions), and grown by a
-    factor where ``k' every`` no longer resolves ``k' + 1`` (beyond 2**53)."""
-    k = max(k + 1, math.floor((time - t0) / every))
-    while t0 + k * every <= time:
-        following = k + 1
-        if t0 + following * every == t0 + k * every:  # k every no longer resolves k + 1
-            following = max(following, int(k * (1.0 + 1e-15)) + 1)
-        k = following
-    return k
+    """The first ``k' > k`` with ``t0 + k' every > time`` (as computed in floating point):
+    bracketed from the quotient ``(time - t0) / every`` and found by bisection, which the
+    monotonic rounding of ``t0 + k' every`` allows; never counted up to (one step of 1e147 s
+    past 0.01 s samples would be 1e149 additions)."""
+
+    def past(j: int) -> bool:
+        return t0 + j * every > time
+
+    lo = k + 1
+    if past(lo):
+        return lo
+    guess = max(lo, math.floor((time - t0) / every))
+    if not past(guess):
+        lo = guess
+    step, hi = 1, guess
+    while not past(hi):
+        hi, step = guess + step, 2 * step
+    while hi - lo > 1:  # lo is not past the time, hi is
+        mid = (lo + hi) // 2
+        lo, hi = (lo, mid) if past(mid) else (mid, hi)
+    return hi
 
 
 STOP_RESOLUTION = 1e-9
