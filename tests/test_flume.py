@@ -342,7 +342,8 @@ def test_defaults_follow_the_wave() -> None:
     cg = float(wt.group_velocity(T, D))
     assert sc.arrival_time(2.0) == pytest.approx(2.0 / cg, rel=1e-3)
     assert sc.viscosity is None and sc.coefh == 1.5  # the core's viscosity
-    assert sc.resolved_scene()["viscosity"] == {"model": "artificial", "alpha": 0.01}
+    assert sc.resolved_scene()["viscosity"] == {"model": "artificial", "alpha": 0.01,
+                                                 "wall_factor": 1.0}
 
 
 # ------------------------------------------------------------------------------------------------

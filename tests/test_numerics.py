@@ -139,6 +139,7 @@ def test_an_option_takes_an_object_a_name_or_a_table() -> None:
 @pytest.mark.parametrize(("value", "key", "reason"), [
     ({"type": "laminar", "alpha": 0.1}, "viscosity.alpha", "not a parameter"),
     ({"type": "artificial", "alpha": -1.0}, "viscosity.alpha", "negative"),
+    ({"type": "laminar", "wall_factor": -0.5}, "viscosity.wall_factor", "negative"),
     ({"alpha": 0.1}, "viscosity", "unknown value None"),
     ("lamniar", "viscosity", "did you mean"),
 ])
@@ -152,6 +153,9 @@ def test_set_changes_one_parameter_of_a_case() -> None:
                                              "integrator.euler_every=30"])
     assert b.viscosity == nm.Artificial(alpha=0.05)
     assert b.integrator == nm.Verlet(euler_every=30)
+    # "none" names the model of that name, not the core's default (which is Fourtakas)
+    assert cli.builder_from_args("dambreak2d", ["diffusion=none"]).diffusion == nm.NoDiffusion()
+    assert cli.builder_from_args("dambreak2d", ["diffusion=auto"]).diffusion is None
     assert "viscosity.nu" in cli.settable_keys("dambreak2d")
     flume = _case_builder("flume2d")
     assert flume.viscosity == nm.Artificial(alpha=nm.FLUME2D_ALPHA)
@@ -165,6 +169,21 @@ def test_set_changes_one_parameter_of_a_case() -> None:
         cli.builder_from_args("dambreak2d", ["viscosity.nu=2e-6"])
     with pytest.raises(OverrideError, match=r"^integrator\.euler_every: expected an integer"):
         cli.builder_from_args("dambreak2d", ["integrator=verlet", "integrator.euler_every=x"])
+
+
+def test_the_viscous_wall_factor_is_a_parameter_of_every_viscosity_model() -> None:
+    """``wall_factor`` (DualSPHysics' ViscoBoundFactor) reaches the core's scene for each
+    model, ``--set`` changes it alone (the case's alpha stays), and the core's default is 1."""
+    for cls in nm.VISCOSITIES:
+        assert cls(wall_factor=0).to_core()["wall_factor"] == 0.0
+        assert "wall_factor" not in cls().to_core()
+    assert nm.core_default("viscosity.wall_factor") == 1.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        flume = cli.builder_from_args("flume2d", ["viscosity.wall_factor=0"])
+    assert flume.viscosity == nm.Artificial(alpha=nm.FLUME2D_ALPHA, wall_factor=0.0)
+    sim = ws.DamBreak(dp=0.05, viscosity=nm.Laminar(wall_factor=0.25)).build()
+    assert sim.scene["viscosity"] == {"model": "laminar", "nu": 1e-6, "wall_factor": 0.25}
 
 
 def test_delta_plus_shifting_is_a_model_of_the_shifting_option() -> None:

@@ -105,7 +105,7 @@ def test_resolution_fills_the_cores_defaults() -> None:
     default, and the defaults are the ones the core runs with."""
     bare = BARE_SCENE
     resolved = json.loads(_core.resolve_scene(json.dumps(bare)))
-    assert resolved["viscosity"] == {"model": "artificial", "alpha": 0.01}
+    assert resolved["viscosity"] == {"model": "artificial", "alpha": 0.01, "wall_factor": 1.0}
     assert resolved["diffusion"] == {"model": "fourtakas", "delta": 0.1}
     assert resolved["cfl"] == 0.2
     with pytest.raises(_core.SceneError, match="dp"):
@@ -122,12 +122,12 @@ def test_scene_defaults_are_what_the_core_fills_in() -> None:
         if not isinstance(value, dict):
             assert resolved[key] == value, key
     assert resolved["boundary"] == {"model": defaults["boundary"]["model"]}
-    assert resolved["viscosity"] == {"model": defaults["viscosity"]["model"],
-                                     "alpha": defaults["viscosity"]["alpha"]}
+    assert resolved["viscosity"] == {"model": defaults["viscosity"]["model"], **{
+        k: defaults["viscosity"][k] for k in ("alpha", "wall_factor")}}
     sps = json.loads(_core.resolve_scene(json.dumps(
         {**bare, "viscosity": {"model": "laminar_sps"}, "integrator": {"scheme": "verlet"}})))
     assert sps["viscosity"] == {"model": "laminar_sps", **{
-        k: defaults["viscosity"][k] for k in ("nu", "cs", "ci")}}
+        k: defaults["viscosity"][k] for k in ("nu", "cs", "ci", "wall_factor")}}
     assert sps["integrator"]["euler_every"] == defaults["integrator"]["euler_every"]
 
 

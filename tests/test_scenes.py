@@ -117,9 +117,9 @@ def test_models_map_to_the_scene() -> None:
     assert s["diffusion"] == {"model": "none"}
     assert s["integrator"] == {"scheme": "verlet", "euler_every": 50}
     assert b.resolved_scene()["viscosity"] == {"model": "laminar_sps", "nu": 2e-6, "cs": 0.12,
-                                               "ci": 0.0066}
+                                               "ci": 0.0066, "wall_factor": 1.0}
     assert DamBreak(viscosity="laminar").resolved_scene()["viscosity"] == {
-        "model": "laminar", "nu": 1e-6}
+        "model": "laminar", "nu": 1e-6, "wall_factor": 1.0}
     assert DamBreak(diffusion="molteni").resolved_scene()["diffusion"] == {
         "model": "molteni", "delta": 0.1}
 

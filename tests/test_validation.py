@@ -570,3 +570,22 @@ def test_solitary_scene_reads_the_wet_front_and_takes_wall_settings() -> None:
     assert slip.until == scene.until
     with pytest.raises(ValidateError, match="--set: key 'beach.slope'"):
         check_settings([("solitary2d", 2.0)], ["beach.slope=0.1"])
+
+
+def test_kimmoun_scene_takes_numerical_settings_only() -> None:
+    """kimmoun2d: ``--set`` reaches the numerics (the viscous wall factor, say) and keeps the
+    case's own (water's viscosity); the wave, the beach and dp are refused."""
+    from watersim import numerics as nm
+    from watersim.validation.cases import kimmoun_scene
+    from watersim.validation.sweep import check_settings
+
+    dp = CASES["kimmoun2d"].dp(1.2)
+    scene, _ = kimmoun_scene(dp)
+    free, _ = kimmoun_scene(dp, {"viscosity.wall_factor": "0"})
+    assert scene.viscosity == nm.WATER["viscosity"]
+    assert free.viscosity == nm.Laminar(wall_factor=0.0)
+    assert free.until == scene.until and free.dp == scene.dp
+    assert kimmoun_scene(dp, quick=True)[0].until < scene.until
+    for item in ("wave.height=0.1", "dp=0.01", "beach.slope=0.1"):
+        with pytest.raises(ValidateError, match=f"--set: key '{item.split('=')[0]}'"):
+            check_settings([("kimmoun2d", 1.2)], [item])

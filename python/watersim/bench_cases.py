@@ -137,11 +137,11 @@ def piston2d(dp: float) -> dict[str, Any]:
     one DBC layer, the tank 0.6 m high and 0.2 m longer behind the paddle. What differs: the
     paddle is one layer thick (the core's paddle takes the wall's layers: 100 particles, not
     400) and the tank has a wall behind the paddle (100 particles DualSPHysics has not); the
-    wave law is for the 0.258 m of water the lattice holds, DualSPHysics' for 0.266 m; and the
-    walls get the fluid's artificial viscosity (DualSPHysics' ``ViscoBoundFactor`` 0 switches
-    it off on wall pairs). DualSPHysics' AWAS starts at 2.6 s, WaterSim's absorber with the
-    paddle's start (Schaffer & Klopman, on here as it is there): neither matters on the short
-    intervals the side-by-side runs."""
+    wave law is for the 0.258 m of water the lattice holds, DualSPHysics' for 0.266 m. As
+    there, wall pairs have no viscous term (its ``ViscoBoundFactor`` 0, ``wall_factor=0``
+    here). DualSPHysics' AWAS starts at 2.6 s, WaterSim's absorber with the paddle's start
+    (Schaffer & Klopman, on here as it is there): neither matters on the short intervals the
+    side-by-side runs."""
     from . import numerics as nm
     from .flume import Flume, Piston, RegularWave
 
@@ -159,7 +159,8 @@ def piston2d(dp: float) -> dict[str, Any]:
             coefh=1.2,
             coefsound=20.0,
             cfl=0.2,
-            viscosity=nm.Artificial(alpha=0.01),
+            # its ViscoBoundFactor 0: no viscous term on wall pairs
+            viscosity=nm.Artificial(alpha=0.01, wall_factor=0.0),
             diffusion=nm.NoDiffusion(),
             integrator=nm.Symplectic(),
             # DualSPHysics' DBC; the flume's own default is Adami's walls

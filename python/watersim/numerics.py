@@ -7,8 +7,8 @@ core's default applies (:func:`core_default`, read from ``watersim._core.scene_d
 ``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
 
 A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``boundary``,
-``shifting``, ``tensile_correction``) takes the option object (``Laminar(nu=2e-6)``), its model's name (``"laminar"``:
-that model with the core's parameters) or its scene-file table
+``shifting``, ``tensile_correction``) takes the option object (``Laminar(nu=2e-6)``), its
+model's name (``"laminar"``: that model with the core's parameters) or its scene-file table
 (``{"type": "laminar", "nu": 2e-6}``); a shifting coefficient alone may be given as a number,
 and an option that is off by default (``shifting``, ``tensile_correction``) may be given by its
 law's name (``"monaghan"``).
@@ -69,6 +69,7 @@ __all__ = [
     "Symplectic",
     "TensileCorrection",
     "Verlet",
+    "ViscosityOption",
     "core_default",
     "from_settings",
     "option",
@@ -176,35 +177,50 @@ class Option:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Artificial(Option):
+class ViscosityOption(Option):
+    """What every viscosity model takes.
+
+    Attributes:
+        wall_factor: factor on the viscous term of fluid-wall pairs (DualSPHysics'
+            ``ViscoBoundFactor``): 1 (the core's default) treats a wall particle as fluid, 0
+            makes the walls free slip for the viscosity while their pressure still keeps the
+            fluid out (Adami et al. 2012's free-slip walls); docs/physics-options.md, "Free-slip
+            walls", measures what it does to a wave and to run-up.
+    """
+
+    FIELD: ClassVar[str] = "viscosity"
+
+    wall_factor: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Artificial(ViscosityOption):
     """Monaghan (1992) artificial viscosity.
 
     Attributes:
         alpha: coefficient [-].
     """
 
-    FIELD: ClassVar[str] = "viscosity"
     TAG: ClassVar[str] = "artificial"
 
     alpha: float | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
-class Laminar(Option):
+class Laminar(ViscosityOption):
     """Lo & Shao (2002) laminar viscosity.
 
     Attributes:
         nu: kinematic viscosity [m^2/s].
     """
 
-    FIELD: ClassVar[str] = "viscosity"
     TAG: ClassVar[str] = "laminar"
 
     nu: float | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
-class LaminarSps(Option):
+class LaminarSps(ViscosityOption):
     """Laminar viscosity plus the SPS Smagorinsky closure (Dalrymple & Rogers 2006); its force
     loop is f64 only.
 
@@ -214,7 +230,6 @@ class LaminarSps(Option):
         ci: Blin constant [-].
     """
 
-    FIELD: ClassVar[str] = "viscosity"
     TAG: ClassVar[str] = "laminar_sps"
 
     nu: float | None = None
@@ -509,7 +524,8 @@ def option_keys(field: str) -> list[str]:
 
 def from_settings(field: str, current: Any, items: Mapping[str, str]) -> Option | None:
     """The option ``field`` after ``--set`` items (dotted key -> text): ``FIELD=MODEL`` picks a
-    model with the core's parameters (``none``/``auto`` clears an optional option), each
+    model with the core's parameters (``none``/``auto`` clears an optional option, unless the
+    field has a model of that name: ``diffusion=none`` is :class:`NoDiffusion`), each
     ``FIELD.PARAMETER=VALUE`` sets one parameter of the model chosen (the case's, else the
     core's default model).
 
@@ -520,7 +536,9 @@ def from_settings(field: str, current: Any, items: Mapping[str, str]) -> Option 
         value = option(field, current)
         if field in items:
             text = items[field]
-            cleared = text.strip().lower() in ("none", "null", "auto")
+            word = text.strip().lower()
+            cleared = (word in ("none", "null", "auto")
+                       and word not in {cls.TAG for cls in OPTION_CLASSES[field]})
             typed = Override(field, text).typed(float if field == "shifting" else str)
             value = None if cleared else option(field, typed)
         prefix = f"{field}."

@@ -45,7 +45,7 @@ from ..flume import (
     RegularWave,
     lattice_dp,
 )
-from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
+from ..flume_cases import BEJI_BATTJES_FILES, _load_csv, _Settings
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
 from ..scenes import DamBreak, Tank
 from ..simulation import Simulation
@@ -731,13 +731,18 @@ KIMMOUN_CREST_VELOCITY_SPH = 1.05
 """Seed 001's own SPH crest velocity over sqrt(g D), kept for comparison."""
 
 
-def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
-    """kimmoun2d (seed 001 flume, H = 0.114 m, T = 1.275 s, 1:15 beach), until = ramp + arrival
-    at x = 14.155 m + 4 periods (about 20.8 s; quick 2.2 periods).
-    Breaking position and H_B: where the phase-averaged wave first reaches H/d = 0.78 among the
-    gauges on the slope (every 0.5 m from 8 to 14.5 m) and its height there; crest velocity on
-    the vertical 240 cm before the shoreline; run-up: mean per-wave maximum."""
-    dp = case.dp(res)
+def kimmoun_scene(dp: float, settings: Mapping[str, str] | None = None, quick: bool = False
+                  ) -> tuple[FlumeScene, list[str]]:
+    """kimmoun2d at ``dp`` with ``--set``-style numerical ``settings`` (``--set
+    viscosity.wall_factor=0``, say) and the warnings its build gave; until = ramp + arrival at
+    x = 14.155 m + 4 periods (about 20.8 s; ``quick``: 2.2 periods).
+
+    Raises:
+        FlumeCaseError: a settings key that is not a numerical key of the flume cases.
+    """
+    probe = _Settings(dict(settings or {}))
+    probe.numerics(dp=dp)
+    probe.only_numerics("kimmoun2d")
 
     def until(s: FlumeScene) -> float:
         # the analysis reads each gauge from ramp + arrival + one period: this leaves three
@@ -746,7 +751,17 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[st
         extra = 2.2 if quick else 4.0
         return s.law.ramp_duration + s.arrival_time(s.shoreline - 0.42) + extra * s.period
 
-    scene, notes = _with_until("kimmoun2d", {"dp": repr(dp)}, until)
+    return _with_until("kimmoun2d", {**(settings or {}), "dp": repr(dp)}, until)
+
+
+def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool,
+                 settings: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """kimmoun2d (seed 001 flume, H = 0.114 m, T = 1.275 s, 1:15 beach; :func:`kimmoun_scene`).
+    Breaking position and H_B: where the phase-averaged wave first reaches H/d = 0.78 among the
+    gauges on the slope (every 0.5 m from 8 to 14.5 m) and its height there; crest velocity on
+    the vertical 240 cm before the shoreline; run-up: mean per-wave maximum."""
+    dp = case.dp(res)
+    scene, notes = kimmoun_scene(dp, settings, quick)
     clock = _Clock()
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     br = result.get("breaking") or {}
@@ -781,7 +796,8 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool) -> dict[st
                "trough_velocity_over_sqrt_gD": vertical.get("trough_velocity_over_sqrt_gD"),
                "runup_over_H": r_over_h,
                "runup_over_H_formulas": formulas, "runup_over_H_seed_sph": KIMMOUN_RUNUP_SPH,
-               "notes": notes, "analysis_notes": result.get("notes", [])}
+               "settings": dict(settings or {}), "notes": notes,
+               "analysis_notes": result.get("notes", [])}
     errors = {
         "breaking_x_m": abs(x_b - KIMMOUN_BREAKING_X) if x_b is not None else None,
         "breaker_height": m.relative_error(h_b, KIMMOUN_BREAKER_HEIGHT) if h_b else None,
@@ -993,7 +1009,8 @@ CASES: dict[str, Case] = {
              "SPH closest to that formula; the other formulas and the seed's own SPH value are "
              "in runs.json).",
              report_details=("breaking_x", "breaker_height", "max_mean_height",
-                             "crest_velocity_over_sqrt_gD", "runup_over_H"), depth=0.705),
+                             "crest_velocity_over_sqrt_gD", "runup_over_H"), depth=0.705,
+             scene=kimmoun_scene),
         Case("stansby2d", "seed 002: regular waves spilling on a 1:20 beach, about 10 periods",
              "seed 002 (Makris et al. on Stansby & Feng 2005): H = 0.105 m, incipient breaking "
              "at gauges 8-10, its SPHysics undertow (Table 3) and crest celerity",

@@ -425,7 +425,7 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
     p.add_argument("--from-json", metavar="FILE", help="report on the runs in FILE instead of "
                    "running")
     p.add_argument("--set", action="append", metavar="KEY=VALUE", help="a numerical setting "
-                   "of the cases that take them (flume2d-long, solitary2d), e.g. --set "
+                   "of the cases that take them (flume2d-long, solitary2d, kimmoun2d), e.g. --set "
                    "shifting.model=delta_plus (repeatable; recorded in each run's "
                    "details.settings)")
     p.add_argument("--note", action="append", metavar="TEXT", help="a line for the report's "

@@ -187,6 +187,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
             let mut max_visc = 0.0f64;
             for group in 0..GROUPS {
                 let is_fluid = group == GROUP_FLUID;
+                // the viscous terms of fluid-wall pairs scaled by the wall factor
+                let (alpha, nu) = if is_fluid { (c.alpha, c.nu) } else { (c.alpha * c.visc_wall_factor, c.nu * c.visc_wall_factor) };
                 for_each_pair(grid, support2, group, f.pos, pa, |b, r, r2, dist| {
                     let rhob = f.rho[b];
                     // One division gives the pair's four reciprocals: 1/(r^2 + eta^2),
@@ -224,11 +226,11 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
                         // is -0.0, which leaves p_term unchanged.
                         // cbar / rhobar = (c_a + c_b) / (rho_a + rho_b)
                         let cbar_rhobar = (ca + sound_speed(c, rhob)) * inv_sum_rho;
-                        p_term += -c.alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
+                        p_term += -alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
                     }
                     sum_acc -= gw * p_term;
                     if VISC != VISC_ARTIFICIAL {
-                        let lam = 4.0 * c.nu * r.dot(gw) * inv_r2_eta2 * inv_sum_rho;
+                        let lam = 4.0 * nu * r.dot(gw) * inv_r2_eta2 * inv_sum_rho;
                         sum_acc += vab * lam;
                     }
                     if VISC == VISC_LAMINAR_SPS && is_fluid {

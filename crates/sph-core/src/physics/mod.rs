@@ -50,6 +50,8 @@ pub struct Constants {
     pub alpha: Real,
     /// Laminar kinematic viscosity [m^2/s].
     pub nu: Real,
+    /// Factor on the viscous term of fluid-wall pairs ([`Viscosity::wall_factor`]).
+    pub visc_wall_factor: Real,
     /// SPS: `(Cs dp)^2` and `2/3 C_I dp^2` (Dalrymple & Rogers 2006).
     pub sps_smag: Real,
     pub sps_blin: Real,
@@ -84,9 +86,9 @@ impl Constants {
         let c0 = if c0 > 0.0 { c0 } else { scene.coefsound * (9.81 * scene.h_swl()).sqrt() };
         let b_tait = eos::stiffness(c0, scene.rho0, scene.gamma);
         let (alpha, nu, cs, ci) = match scene.viscosity {
-            Viscosity::Artificial { alpha } => (alpha, 0.0, 0.0, 0.0),
-            Viscosity::Laminar { nu } => (0.0, nu, 0.0, 0.0),
-            Viscosity::LaminarSps { nu, cs, ci } => (0.0, nu, cs, ci),
+            Viscosity::Artificial { alpha, .. } => (alpha, 0.0, 0.0, 0.0),
+            Viscosity::Laminar { nu, .. } => (0.0, nu, 0.0, 0.0),
+            Viscosity::LaminarSps { nu, cs, ci, .. } => (0.0, nu, cs, ci),
         };
         let delta = match scene.diffusion {
             Diffusion::None => 0.0,
@@ -106,6 +108,7 @@ impl Constants {
             eta2: 0.01 * h * h,
             alpha,
             nu,
+            visc_wall_factor: scene.viscosity.wall_factor(),
             sps_smag: (cs * scene.dp).powi(2),
             sps_blin: 2.0 / 3.0 * ci * scene.dp * scene.dp,
             delta_h_c0: delta * h * c0,

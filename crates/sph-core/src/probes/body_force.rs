@@ -59,6 +59,8 @@ fn wall_particle_force<D: Dim, K: Kernel>(view: &ProbeView<'_, D, K>, w: usize) 
     let (xw, vw, rhow) = (p.pos[w], p.vel[w], p.rho[w]);
     let pw_rho2 = pressure(c, rhow) / (rhow * rhow);
     let cw = sound_speed(c, rhow);
+    // the fluid's viscous terms against walls carry the wall factor (Viscosity::wall_factor)
+    let (alpha, nu) = (c.alpha * c.visc_wall_factor, c.nu * c.visc_wall_factor);
     let mut sum = D::V::ZERO;
     for_each_pair(view.grid, c.support * c.support, GROUP_FLUID, &p.pos, xw, |a, r_wa, r2, dist| {
         if p.kind[a] == KIND_EXCLUDED {
@@ -72,10 +74,10 @@ fn wall_particle_force<D: Dim, K: Kernel>(view: &ProbeView<'_, D, K>, w: usize) 
         let inv_sum_rho = 1.0 / (rhoa + rhow);
         // Pi_aw acts on approaching pairs only (v_aw.r_aw < 0); alpha is 0 for laminar viscosity
         let vr = v_aw.dot(r_aw);
-        let pi = -c.alpha * (sound_speed(c, rhoa) + cw) * inv_sum_rho * c.h * vr.min(0.0) * inv_r2_eta2;
+        let pi = -alpha * (sound_speed(c, rhoa) + cw) * inv_sum_rho * c.h * vr.min(0.0) * inv_r2_eta2;
         let p_term = pressure(c, rhoa) / (rhoa * rhoa) + pw_rho2 + pi;
         // nu is 0 for artificial viscosity
-        let laminar = 4.0 * c.nu * r_aw.dot(grad) * inv_r2_eta2 * inv_sum_rho;
+        let laminar = 4.0 * nu * r_aw.dot(grad) * inv_r2_eta2 * inv_sum_rho;
         sum += grad * p_term - v_aw * laminar;
     });
     sum * (c.mass * c.mass)

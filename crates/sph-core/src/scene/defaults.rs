@@ -56,6 +56,9 @@ pub struct ViscosityDefaults {
     pub cs: Real,
     /// Blin constant (Dalrymple & Rogers 2006).
     pub ci: Real,
+    /// Factor on the viscous term of fluid-wall pairs: walls as viscous as fluid
+    /// (DualSPHysics' `ViscoBoundFactor` default).
+    pub wall_factor: Real,
 }
 
 /// The default density diffusion term and its coefficient.
@@ -122,7 +125,7 @@ impl Default for Defaults {
             coefsound: 20.0,
             gamma: 7.0,
             cfl: 0.2,
-            viscosity: ViscosityDefaults { model: "artificial", alpha: 0.01, nu: 1.0e-6, cs: 0.12, ci: 0.0066 },
+            viscosity: ViscosityDefaults { model: "artificial", alpha: 0.01, nu: 1.0e-6, cs: 0.12, ci: 0.0066, wall_factor: 1.0 },
             diffusion: DiffusionDefaults { model: "fourtakas", delta: 0.1 },
             integrator: IntegratorDefaults { scheme: "symplectic", euler_every: 40 },
             boundary: BoundaryDefaults { model: "dbc", slip: Slip::WallVelocity },
@@ -170,6 +173,7 @@ pub(crate) mod serde_default {
         nu: Real = viscosity.nu;
         cs: Real = viscosity.cs;
         ci: Real = viscosity.ci;
+        visc_wall_factor: Real = viscosity.wall_factor;
         delta: Real = diffusion.delta;
         euler_every: u32 = integrator.euler_every;
         mdbc_slip: Slip = boundary.slip;
@@ -215,7 +219,7 @@ mod tests {
 
     #[test]
     fn tagged_defaults_are_the_default_models_with_default_parameters() {
-        assert_eq!(viscosity(), Viscosity::Artificial { alpha: 0.01 });
+        assert_eq!(viscosity(), Viscosity::Artificial { alpha: 0.01, wall_factor: 1.0 });
         assert_eq!(diffusion(), Diffusion::Fourtakas { delta: 0.1 });
         assert_eq!(integrator(), Integrator::Symplectic);
         assert_eq!(boundary(), Boundary::Dbc);

@@ -224,7 +224,7 @@ mod tests {
             r#", "viscosity": {"model": "laminar_sps"}, "diffusion": {"model": "molteni"}, "integrator": {"scheme": "verlet"}, "shifting": {}"#,
         ))
         .expect("valid scene");
-        assert_eq!(s.viscosity, Viscosity::LaminarSps { nu: d.viscosity.nu, cs: d.viscosity.cs, ci: d.viscosity.ci });
+        assert_eq!(s.viscosity, Viscosity::LaminarSps { nu: d.viscosity.nu, cs: d.viscosity.cs, ci: d.viscosity.ci, wall_factor: d.viscosity.wall_factor });
         assert_eq!(s.diffusion, Diffusion::Molteni { delta: d.diffusion.delta });
         assert_eq!(s.integrator, Integrator::Verlet { euler_every: d.integrator.euler_every });
         assert_eq!(s.shifting.map(|sh| sh.coefficient), Some(d.shifting.coefficient));
@@ -243,6 +243,7 @@ mod tests {
             (dambreak_json(r#", "kernel": "gauss""#), "kernel"),
             (dambreak_json(r#", "viscosity": {"model": "artificial", "alpha": -0.1}"#), "viscosity.alpha"),
             (dambreak_json(r#", "viscosity": {"model": "magic"}"#), "viscosity"),
+            (dambreak_json(r#", "viscosity": {"model": "laminar", "wall_factor": -1}"#), "viscosity.wall_factor"),
             (dambreak_json(r#", "bogus": 1"#), "bogus"),
             (dambreak_json(r#", "shifting": {"coefficient": 0}"#), "shifting.coefficient"),
             (dambreak_json(r#", "shifting": {"surface_threshold": 2.0}"#), "shifting.surface_threshold"),

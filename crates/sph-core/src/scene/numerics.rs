@@ -14,11 +14,17 @@ pub enum Viscosity {
     Artificial {
         #[serde(default = "default::alpha")]
         alpha: Real,
+        /// See [`Viscosity::wall_factor`].
+        #[serde(default = "default::visc_wall_factor")]
+        wall_factor: Real,
     },
     /// Lo & Shao (2002) laminar viscosity, kinematic viscosity `nu` [m^2/s].
     Laminar {
         #[serde(default = "default::nu")]
         nu: Real,
+        /// See [`Viscosity::wall_factor`].
+        #[serde(default = "default::visc_wall_factor")]
+        wall_factor: Real,
     },
     /// Laminar viscosity plus the SPS Smagorinsky closure (Dalrymple & Rogers 2006).
     LaminarSps {
@@ -28,7 +34,25 @@ pub enum Viscosity {
         cs: Real,
         #[serde(default = "default::ci")]
         ci: Real,
+        /// See [`Viscosity::wall_factor`].
+        #[serde(default = "default::visc_wall_factor")]
+        wall_factor: Real,
     },
+}
+
+impl Viscosity {
+    /// The factor on the viscous term of fluid-wall pairs (DualSPHysics' `ViscoBoundFactor`):
+    /// 1 treats a wall particle as fluid, 0 drops the wall's viscous force, so the wall is free
+    /// slip for the viscosity while its pressure still keeps the fluid out (Adami et al. 2012,
+    /// section 2.3, treat free-slip walls this way). Applies to the artificial term and the
+    /// laminar one; the SPS stress acts between fluid particles only.
+    pub fn wall_factor(&self) -> Real {
+        match *self {
+            Viscosity::Artificial { wall_factor, .. }
+            | Viscosity::Laminar { wall_factor, .. }
+            | Viscosity::LaminarSps { wall_factor, .. } => wall_factor,
+        }
+    }
 }
 
 /// Density diffusion term in the continuity equation.

@@ -249,10 +249,11 @@ impl Scene {
     /// Viscosity, diffusion, integrator, shifting, tensile correction and wall thickness.
     fn validate_numerics(&self) -> Result<()> {
         let dim = self.dim;
+        check_non_negative("viscosity.wall_factor", self.viscosity.wall_factor())?;
         match self.viscosity {
-            Viscosity::Artificial { alpha } => check_non_negative("viscosity.alpha", alpha)?,
-            Viscosity::Laminar { nu } => check_non_negative("viscosity.nu", nu)?,
-            Viscosity::LaminarSps { nu, cs, ci } => {
+            Viscosity::Artificial { alpha, .. } => check_non_negative("viscosity.alpha", alpha)?,
+            Viscosity::Laminar { nu, .. } => check_non_negative("viscosity.nu", nu)?,
+            Viscosity::LaminarSps { nu, cs, ci, .. } => {
                 check_non_negative("viscosity.nu", nu)?;
                 check_non_negative("viscosity.cs", cs)?;
                 check_non_negative("viscosity.ci", ci)?;

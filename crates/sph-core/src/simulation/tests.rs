@@ -8,6 +8,7 @@ use crate::kernel::{CubicSpline, WendlandC2};
 use crate::math::{Dim2, Dim3};
 use glam::DVec2;
 use crate::physics::batched::{fluid_forces_batched, fluid_forces_variant};
+use crate::physics::eos::sound_speed;
 use crate::physics::forces::fluid_forces_scalar;
 use crate::physics::{DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR};
 
@@ -281,4 +282,82 @@ fn dam_break_with_the_tensile_correction_is_stable_and_differs() {
     assert!(tension > 0, "no fluid particle went below rho0: nothing for the correction to act on");
     let moved = with.iter().zip(&without).filter(|(a, b)| (**a - **b).length() > 1e-6).count();
     assert!(moved > with.len() / 10, "{moved} of {} fluid particles moved differently", with.len());
+}
+
+/// The viscous wall factor (`Viscosity::wall_factor`, DualSPHysics' ViscoBoundFactor) scales
+/// the viscous term of fluid-wall pairs and nothing else: on a moving dam break, the change it
+/// makes is, particle by particle, Monaghan's artificial viscosity summed over wall neighbours
+/// (written here from the formula); continuity and particles away from walls are untouched; in
+/// every loop (scalar, batched f64 and f32) and for laminar viscosity too.
+#[test]
+fn the_wall_factor_scales_the_viscous_term_of_wall_pairs_only() {
+    let run = |visc: &str| {
+        let json = dambreak(2, &format!(r#", "viscosity": {visc}"#));
+        let mut s = Solver::<Dim2, WendlandC2>::new(Scene::from_json(&json).expect("scene")).expect("solver");
+        s.step(40).expect("stable");
+        s.compute_forces();
+        s
+    };
+    for (visc, laminar) in [(r#"{"model": "artificial", "alpha": 0.1}"#, false), (r#"{"model": "laminar", "nu": 1e-3}"#, true)] {
+        let s = run(visc);
+        let n = s.p.n_fluid();
+        let fs = s.p.fluid_start();
+        let fields = fields_of(&s.p, &[]);
+        let forces = |factor: Real, f32_pairs: bool, scalar: bool| {
+            let mut c = s.c;
+            c.visc_wall_factor = factor;
+            c.pair_f32 = f32_pairs;
+            let (mut acc, mut drho) = (vec![DVec2::ZERO; n], vec![0.0; n]);
+            match (laminar, scalar) {
+                (false, false) => fluid_forces_batched::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+                (false, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+                (true, false) => fluid_forces_batched::<Dim2, WendlandC2, VISC_LAMINAR, DIFF_FOURTAKAS>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+                (true, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_LAMINAR, DIFF_FOURTAKAS, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+            };
+            (acc, drho)
+        };
+        // the formula: the viscous term of every fluid-wall pair
+        let near_wall = |a: usize| (0..fs).any(|w| (s.p.pos[a] - s.p.pos[w]).length() < s.c.support);
+        let wall_viscous: Vec<DVec2> = (0..n)
+            .map(|i| {
+                let a = fs + i;
+                let mut sum = DVec2::ZERO;
+                for w in 0..fs {
+                    let r = s.p.pos[a] - s.p.pos[w];
+                    let d = r.length();
+                    if d >= s.c.support || d == 0.0 {
+                        continue;
+                    }
+                    let gw = r * s.kernel.grad_factor(d);
+                    let v = s.p.vel[a] - s.p.vel[w];
+                    let (rhoa, rhow) = (s.p.rho[a], s.p.rho[w]);
+                    sum += if laminar {
+                        v * (4.0 * s.c.nu * r.dot(gw) / ((r.dot(r) + s.c.eta2) * (rhoa + rhow)))
+                    } else {
+                        let cbar_rhobar = (sound_speed(&s.c, rhoa) + sound_speed(&s.c, rhow)) / (rhoa + rhow);
+                        gw * (s.c.alpha * cbar_rhobar * s.c.h * v.dot(r).min(0.0) / (r.dot(r) + s.c.eta2))
+                    };
+                }
+                sum * s.c.mass
+            })
+            .collect();
+        let scale = wall_viscous.iter().map(|v| v.length()).fold(0.0, Real::max);
+        assert!(scale > 0.0, "{visc}: no viscous force from the walls to scale");
+        for (f32_pairs, scalar) in [(false, false), (false, true), (true, false)] {
+            let (acc1, drho1) = forces(1.0, f32_pairs, scalar);
+            let (acc0, drho0) = forces(0.0, f32_pairs, scalar);
+            let (acc_half, _) = forces(0.5, f32_pairs, scalar);
+            assert_eq!(drho1, drho0, "{visc}: continuity does not depend on the wall factor");
+            let acc_scale = acc1.iter().map(|a| a.length()).fold(0.0, Real::max);
+            let tol = if f32_pairs { 1e-5 } else { 1e-11 } * acc_scale;
+            for i in 0..n {
+                let removed = acc1[i] - acc0[i];
+                assert!((removed - wall_viscous[i]).length() <= tol, "{visc} f32 {f32_pairs} scalar {scalar}: particle {i}: {removed:?} against {:?}", wall_viscous[i]);
+                assert!(((acc1[i] + acc0[i]) * 0.5 - acc_half[i]).length() <= tol, "{visc}: linear in the factor, particle {i}");
+                if !near_wall(fs + i) {
+                    assert_eq!(acc1[i], acc0[i], "{visc}: particle {i} has no wall neighbour");
+                }
+            }
+        }
+    }
 }
