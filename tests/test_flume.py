@@ -263,6 +263,24 @@ def test_runup_gauge_takes_the_wet_front_method_and_refuses_an_unknown_one() -> 
         ws.RunupGauge(method="wetfront")
 
 
+def test_gauges_without_a_method_take_the_cores_default() -> None:
+    """The core's ``Defaults`` is the only default of a gauge's method: Python leaves an unset
+    method out of the scene, and the core fills in ``scene_defaults()["gauges"]``'s."""
+    from watersim import _core
+
+    defaults = _core.scene_defaults()["gauges"]
+    beach = ws.PlaneBeach(toe=2.0, slope=0.1)
+    flume = ws.Flume(length=6.0, depth=0.3, beach=beach)
+    sc = flume.scene(regular(), dp=0.02, gauges=[ws.ElevationGauge(1.0)], runup=ws.RunupGauge())
+    core = sc.to_scene()["gauges"]
+    assert all("method" not in g for g in core if g["type"] in ("elevation", "runup"))
+    resolved = {g["type"]: g["method"] for g in sc.resolved_scene()["gauges"]
+                if g["type"] in ("elevation", "runup")}
+    assert resolved == {"elevation": defaults["elevation_method"],
+                        "runup": defaults["runup_method"]}
+    assert ws.ElevationGauge(1.0, method="particle").to_core(sc, "e", 0.1)["method"] == "particle"
+
+
 def test_submerged_bar_profile_has_no_runup_and_keeps_its_shape() -> None:
     bar = ws.ProfileBeach(x=(6.0, 12.0, 14.0, 17.0), z=(0.0, 0.3, 0.3, 0.0))
     sc = ws.Flume(length=25.0, depth=0.4, beach=bar).scene(

@@ -572,7 +572,7 @@ def test_solitary_scene_reads_the_wet_front_and_takes_wall_settings() -> None:
         check_settings([("solitary2d", 2.0)], ["beach.slope=0.1"])
 
 
-def test_kimmoun_scene_takes_numerical_settings_only() -> None:
+def test_kimmoun_and_stansby_scenes_take_numerical_settings_only() -> None:
     """kimmoun2d: ``--set`` reaches the numerics (the viscous wall factor, say) and keeps the
     case's own (water's viscosity); the wave, the beach and dp are refused."""
     from watersim import numerics as nm
@@ -589,3 +589,12 @@ def test_kimmoun_scene_takes_numerical_settings_only() -> None:
     for item in ("wave.height=0.1", "dp=0.01", "beach.slope=0.1"):
         with pytest.raises(ValidateError, match=f"--set: key '{item.split('=')[0]}'"):
             check_settings([("kimmoun2d", 1.2)], [item])
+    # stansby2d the same way (its own numerics, the flume defaults, kept)
+    from watersim.validation.cases import stansby_scene
+
+    plain, _ = stansby_scene(CASES["stansby2d"].dp(2.5))
+    free, _ = stansby_scene(CASES["stansby2d"].dp(2.5), {"viscosity.wall_factor": "0"})
+    assert plain.viscosity is None and free.viscosity == nm.Artificial(wall_factor=0.0)
+    assert free.until == plain.until
+    with pytest.raises(ValidateError, match="--set: key 'until'"):
+        check_settings([("stansby2d", 2.5)], ["until=3"])

@@ -656,6 +656,8 @@ def _core_default_text(cls: type, name: str) -> str | None:
         key = f"{cls.FIELD}.{name}"
     elif issubclass(cls, SceneBuilder) and name in SceneBuilder.CORE_KEYS:
         key = name
+    elif name in getattr(cls, "CORE_DEFAULTS", {}):  # a gauge's
+        key = cls.CORE_DEFAULTS[name]  # type: ignore[attr-defined]
     else:
         return None
     try:

@@ -22,14 +22,13 @@ use crate::scene::BoxSpec;
 pub use body_force::{body_force, NO_BODY};
 pub use overtopping::Crossings;
 
-/// How a free-surface gauge finds the surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+/// How a free-surface gauge finds the surface (default: `Defaults::gauges`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SurfaceMethod {
     /// Highest point of a vertical line (samples every dp/2) where the fluid's kernel volume
     /// sum `sum_b V_b W` fills half the space the walls leave free (`S_fluid / (1 - S_wall)
     /// >= 0.5`, which is `S_fluid >= 0.5` away from walls), linearly interpolated between samples.
-    #[default]
     Kernel,
     /// Highest fluid particle within 0.75 dp of the line, plus dp/2 (the particle's half-spacing,
     /// so that still water reads its depth); seed 001 uses a band of dp/2, which can miss the
@@ -37,14 +36,13 @@ pub enum SurfaceMethod {
     Particle,
 }
 
-/// How a run-up gauge finds the wet front on the slope.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+/// How a run-up gauge finds the wet front on the slope (default: `Defaults::gauges`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RunupMethod {
     /// The last point along the segment where the kernel volume sum marks water
     /// ([`SurfaceMethod::Kernel`]'s test): it sees only water as deep as the segment lies
     /// above the bed.
-    #[default]
     Kernel,
     /// The highest fluid particle within 1.5 dp of the segment.
     Particle,
@@ -74,7 +72,7 @@ pub enum GaugeSpec {
     Elevation {
         name: String,
         position: Vec<Real>,
-        #[serde(default)]
+        #[serde(default = "crate::scene::serde_default::elevation_method")]
         method: SurfaceMethod,
         interval: Real,
     },
@@ -89,7 +87,7 @@ pub enum GaugeSpec {
         name: String,
         start: Vec<Real>,
         end: Vec<Real>,
-        #[serde(default)]
+        #[serde(default = "crate::scene::serde_default::runup_method")]
         method: RunupMethod,
         interval: Real,
     },

@@ -234,26 +234,30 @@ class ElevationGauge(_Gauge):
     Attributes:
         x: position along the flume [m].
         y: position across (3D only) [m]; ``None``: the flume's centre line.
-        method: ``"kernel"`` or ``"particle"`` (see :data:`SURFACE_METHODS`).
+        method: ``"kernel"`` or ``"particle"`` (see :data:`SURFACE_METHODS`); ``None``: the
+            core's default (``scene_defaults()["gauges"]["elevation_method"]``).
         name: column name; default ``eta_x{x:.3f}`` (``_y{y:.3f}`` added in 3D).
         interval: sampling interval [s]; default the scene's ``sample_interval``.
     """
 
     x: float
     y: float | None = None
-    method: str = "kernel"
+    method: str | None = None
     name: str | None = None
     interval: float | None = None
 
     TAG: ClassVar[str] = "elevation"
-    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": SURFACE_METHODS}
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": SURFACE_METHODS}
+    CORE_DEFAULTS: ClassVar[dict[str, str]] = {"method": "gauges.elevation_method"}
+    """The core's defaults of the fields left ``None`` (keys of ``scene_defaults()``)."""
 
     def __post_init__(self) -> None:
         _set(self, "x", _number("gauge.x", self.x))
         if self.y is not None:
             _set(self, "y", _number("gauge.y", self.y))
-        _choice("gauge.method", self.method, self.CHOICES["method"])
+        if self.method is not None:
+            _choice("gauge.method", self.method, self.CHOICES["method"])
         self._check_name_and_interval("gauge")
 
     def y_in(self, scene: FlumeScene) -> float:
@@ -292,8 +296,8 @@ class ElevationGauge(_Gauge):
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         """The core's gauge JSON."""
         pos = [self.x, 0.0] if scene.dim == 2 else [self.x, self.y_in(scene), 0.0]
-        return {"type": self.TAG, "name": name, "position": pos, "method": self.method,
-                "interval": interval}
+        method = {} if self.method is None else {"method": self.method}
+        return {"type": self.TAG, "name": name, "position": pos, **method, "interval": interval}
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
@@ -561,20 +565,23 @@ class RunupGauge(_Gauge):
         start, end: the segment's ends [m], flume coordinates; ``None`` (both): laid automatically
             along the beach, ``1.5 dp`` above its surface, from below the lowest run-down up to
             the top of the slope.
-        method: ``"kernel"``, ``"particle"`` or ``"wet_front"`` (see :data:`RUNUP_METHODS`).
+        method: ``"kernel"``, ``"particle"`` or ``"wet_front"`` (see :data:`RUNUP_METHODS`);
+            ``None``: the core's default (``scene_defaults()["gauges"]["runup_method"]``).
         name: record name (default ``"runup"``).
         interval: sampling interval [s]; default the scene's ``sample_interval``.
     """
 
     start: tuple[float, ...] | None = None
     end: tuple[float, ...] | None = None
-    method: str = "kernel"
+    method: str | None = None
     name: str = "runup"
     interval: float | None = None
 
     TAG: ClassVar[str] = "runup"
-    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": RUNUP_METHODS}
     """The core's gauge ``type`` (and the scene file's ``type`` of a gauge table)."""
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"method": RUNUP_METHODS}
+    CORE_DEFAULTS: ClassVar[dict[str, str]] = {"method": "gauges.runup_method"}
+    """The core's defaults of the fields left ``None`` (keys of ``scene_defaults()``)."""
 
     def __post_init__(self) -> None:
         if (self.start is None) != (self.end is None):
@@ -590,14 +597,16 @@ class RunupGauge(_Gauge):
                 raise SceneError("runup.end: must be uphill of start (higher z)")
             _set(self, "start", a)
             _set(self, "end", b)
-        _choice("runup.method", self.method, self.CHOICES["method"])
+        if self.method is not None:
+            _choice("runup.method", self.method, self.CHOICES["method"])
         self._check_name_and_interval("runup")
 
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         """The core's gauge JSON (the segment resolved: see :attr:`FlumeScene.runup_gauge`)."""
         assert self.start is not None and self.end is not None
+        method = {} if self.method is None else {"method": self.method}
         return {"type": self.TAG, "name": name, "start": list(self.start),
-                "end": list(self.end), "method": self.method, "interval": interval}
+                "end": list(self.end), **method, "interval": interval}
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
@@ -875,10 +884,11 @@ def gauge_specs(scene: FlumeScene, gauges: Sequence[_Gauge], default_interval: f
 
 
 def elevation_gauges_between(
-    x_start: float, x_end: float, spacing: float, method: str = "kernel"
+    x_start: float, x_end: float, spacing: float, method: str | None = None
 ) -> list[ElevationGauge]:
     """Elevation gauges every ``spacing`` metres from ``x_start`` to ``x_end`` (both included
-    when they fall on the spacing): a line of gauges for envelopes and breaking position."""
+    when they fall on the spacing): a line of gauges for envelopes and breaking position
+    (``method`` as :class:`ElevationGauge`'s)."""
     a = _number("x_start", x_start)
     b = _number("x_end", x_end)
     s = _positive("spacing", spacing)

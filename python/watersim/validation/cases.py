@@ -45,7 +45,7 @@ from ..flume import (
     RegularWave,
     lattice_dp,
 )
-from ..flume_cases import BEJI_BATTJES_FILES, _load_csv, _Settings
+from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
 from ..scenes import DamBreak, Tank
 from ..simulation import Simulation
@@ -57,7 +57,7 @@ from .absorption import (
 )
 from .buchner import BUCHNER_H, WALL_MODELS, plot_buchner, run_buchner
 from .longflume import LONG_FLUME_WAVE, long_flume_scene, run_long_flume
-from .running import _Clock, _with_until, advance, make_record
+from .running import _Clock, _with_until, advance, make_record, numerical_case_scene
 from .solitary import SOLITARY_DEPTH, SOLITARY_HEIGHT, SOLITARY_SLOPE, solitary_scene
 from .stansby import STANSBY_HEIGHT, stansby_metrics, stansby_until
 
@@ -740,10 +740,6 @@ def kimmoun_scene(dp: float, settings: Mapping[str, str] | None = None, quick: b
     Raises:
         FlumeCaseError: a settings key that is not a numerical key of the flume cases.
     """
-    probe = _Settings(dict(settings or {}))
-    probe.numerics(dp=dp)
-    probe.only_numerics("kimmoun2d")
-
     def until(s: FlumeScene) -> float:
         # the analysis reads each gauge from ramp + arrival + one period: this leaves three
         # steady periods (quick: 1.2) at the last breaking gauge, 42 cm before the shoreline
@@ -751,7 +747,7 @@ def kimmoun_scene(dp: float, settings: Mapping[str, str] | None = None, quick: b
         extra = 2.2 if quick else 4.0
         return s.law.ramp_duration + s.arrival_time(s.shoreline - 0.42) + extra * s.period
 
-    return _with_until("kimmoun2d", {**(settings or {}), "dp": repr(dp)}, until)
+    return numerical_case_scene("kimmoun2d", dp, settings, until)
 
 
 def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool,
@@ -814,16 +810,25 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool,
 # Stansby & Feng breaking (seed 002): metrics in validation/stansby.py
 
 
-def _run_stansby(case: Case, res: float, quick: bool, progress: bool) -> dict[str, Any]:
-    """stansby2d (seed 002 flume, H = 0.105 m, T = 2.42 s, 1:20 beach from 2.0 m) until
-    :func:`stansby_until` (about 25.2 s; quick 20.8 s); metrics by :func:`stansby_metrics`."""
+def stansby_scene(dp: float, settings: Mapping[str, str] | None = None, quick: bool = False
+                  ) -> tuple[FlumeScene, list[str]]:
+    """stansby2d at ``dp`` with ``--set``-style numerical ``settings``, until
+    :func:`stansby_until` (about 25.2 s; ``quick`` 20.8 s), and the warnings its build gave."""
+    return numerical_case_scene("stansby2d", dp, settings,
+                                functools.partial(stansby_until, quick=quick))
+
+
+def _run_stansby(case: Case, res: float, quick: bool, progress: bool,
+                 settings: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """stansby2d (seed 002 flume, H = 0.105 m, T = 2.42 s, 1:20 beach from 2.0 m;
+    :func:`stansby_scene`); metrics by :func:`stansby_metrics`."""
     dp = case.dp(res)
-    scene, notes = _with_until("stansby2d", {"dp": repr(dp)},
-                               functools.partial(stansby_until, quick=quick))
+    scene, notes = stansby_scene(dp, settings, quick)
     clock = _Clock()
     sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     errors, details = stansby_metrics(result)
-    details.update(until=scene.until, notes=notes, analysis_notes=result.get("notes", []))
+    details.update(until=scene.until, settings=dict(settings or {}), notes=notes,
+                   analysis_notes=result.get("notes", []))
     return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
                        errors, details)
 
@@ -1050,7 +1055,7 @@ CASES: dict[str, Case] = {
              report_details=("H_flat", "incident_first_harmonic_error", "breaking_x",
                              "undertow_seaward_mean",
                              "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
-             depth=0.34),
+             depth=0.34, scene=stansby_scene),
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "
              "vertical wall for 60 periods, piston and flap, absorption on and off; a solitary "
              "wave against the wall",

@@ -14,7 +14,7 @@ from .._core import InstabilityError
 from ..flume import (
     FlumeScene,
 )
-from ..flume_cases import flume_builder
+from ..flume_cases import _Settings, flume_builder
 from ..runrecord import VALIDATION_FIELDS, run_record, stop_status
 from ..simulation import Simulation
 
@@ -145,3 +145,20 @@ def _with_until(case: str, items: dict[str, str], until: Callable[[FlumeScene], 
     """The scene built twice: once to compute ``until`` from it, once with that ``until``."""
     probe, _ = _quiet_flume(case, items)
     return _quiet_flume(case, {**items, "until": repr(round(until(probe), 3))})
+
+
+def numerical_case_scene(case: str, dp: float, settings: Mapping[str, str] | None,
+                         until: Callable[[FlumeScene], float],
+                         fixed: Mapping[str, str] | None = None) -> tuple[FlumeScene, list[str]]:
+    """A flume case's scene for a validation case that takes numerical ``--set`` items only:
+    ``settings`` checked (any other key refused, ``dp`` and ``until`` included, before anything
+    runs), then the case built at ``dp`` with them and the case's ``fixed`` items, until
+    ``until(scene)``; its warnings as notes.
+
+    Raises:
+        FlumeCaseError: a settings key that is not a numerical key of the flume cases.
+    """
+    probe = _Settings(dict(settings or {}))
+    probe.numerics(dp=dp)
+    probe.only_numerics(case)
+    return _with_until(case, {**(settings or {}), **(fixed or {}), "dp": repr(dp)}, until)

@@ -11,11 +11,9 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from .. import numerics as nm
 from .. import wave_theory as wt
 from ..flume import FlumeScene, RunupGauge
-from ..flume_cases import _Settings
-from .running import _with_until
+from .running import numerical_case_scene
 
 SOLITARY_SLOPE = 1.0 / 3.0
 """Beach slope of the run-up case: steep enough that H/d = 0.15 does not break."""
@@ -38,11 +36,8 @@ def solitary_scene(dp: float, settings: Mapping[str, str] | None = None
         FlumeCaseError: a settings key that is not a numerical key of the flume cases.
     """
     depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
-    probe = _Settings(dict(settings or {}))
-    probe.numerics(dp=dp, **nm.FLUME_CASE)
-    probe.only_numerics("solitary2d")
-    items = {**(settings or {}), "dp": repr(dp), "wave.height": repr(height),
-             "beach.slope": repr(SOLITARY_SLOPE), "beach.toe": "3.0", "flume.length": "4.8"}
+    fixed = {"wave.height": repr(height), "beach.slope": repr(SOLITARY_SLOPE),
+             "beach.toe": "3.0", "flume.length": "4.8"}
 
     def until(s: FlumeScene) -> float:
         assert s.law.duration is not None and s.shoreline is not None
@@ -51,5 +46,5 @@ def solitary_scene(dp: float, settings: Mapping[str, str] | None = None
         # run-up peaks within about a second of the crest reaching the shoreline
         return 0.5 * s.law.duration + s.shoreline / c + 1.0
 
-    scene, notes = _with_until("solitary2d", items, until)
+    scene, notes = numerical_case_scene("solitary2d", dp, settings, until, fixed)
     return dataclasses.replace(scene, runup=RunupGauge(method="wet_front")), notes

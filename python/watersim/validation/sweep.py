@@ -424,8 +424,9 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
                    "unpickled here")
     p.add_argument("--from-json", metavar="FILE", help="report on the runs in FILE instead of "
                    "running")
+    settable = ", ".join(c.name for c in CASES.values() if c.settable)
     p.add_argument("--set", action="append", metavar="KEY=VALUE", help="a numerical setting "
-                   "of the cases that take them (flume2d-long, solitary2d, kimmoun2d), e.g. --set "
+                   f"of the cases that take them ({settable}), e.g. --set "
                    "shifting.model=delta_plus (repeatable; recorded in each run's "
                    "details.settings)")
     p.add_argument("--note", action="append", metavar="TEXT", help="a line for the report's "

@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, ShiftingModel, Slip, Viscosity};
 use crate::kernel::KernelKind;
+use crate::probes::{RunupMethod, SurfaceMethod};
 use crate::physics::tensile::TensileModel;
 use crate::math::Real;
 
@@ -36,6 +37,7 @@ pub struct Defaults {
     pub shifting: ShiftingDefaults,
     pub tensile_correction: TensileDefaults,
     pub damping: DampingDefaults,
+    pub gauges: GaugeDefaults,
     /// Stability monitors (docs/stability.md): loose enough that a healthy run never trips
     /// them, tight enough to stop a diverging one within a few steps.
     pub density_band: Real,
@@ -108,6 +110,15 @@ pub struct TensileDefaults {
     pub epsilon_neg: Real,
 }
 
+/// How free-surface and run-up gauges find the water when the scene does not say.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GaugeDefaults {
+    /// Elevation gauges: the kernel volume sum (no gap between particles to fall through).
+    pub elevation_method: SurfaceMethod,
+    /// Run-up gauges: the kernel volume sum along the segment.
+    pub runup_method: RunupMethod,
+}
+
 /// The damping zone's parameters (no damping zone by default).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DampingDefaults {
@@ -133,6 +144,7 @@ impl Default for Defaults {
             shifting: ShiftingDefaults { model: ShiftingModel::Lind, coefficient: 2.0 },
             tensile_correction: TensileDefaults { model: TensileModel::Monaghan, epsilon_pos: 0.01, epsilon_neg: 0.2 },
             damping: DampingDefaults { strength: 10.0 },
+            gauges: GaugeDefaults { elevation_method: SurfaceMethod::Kernel, runup_method: RunupMethod::Kernel },
             density_band: 0.5,
             lost_fraction_limit: 0.01,
             energy_growth_limit: 0.05,
@@ -184,6 +196,8 @@ pub(crate) mod serde_default {
         tensile_epsilon_pos: Real = tensile_correction.epsilon_pos;
         tensile_epsilon_neg: Real = tensile_correction.epsilon_neg;
         damping_strength: Real = damping.strength;
+        elevation_method: SurfaceMethod = gauges.elevation_method;
+        runup_method: RunupMethod = gauges.runup_method;
         density_band: Real = density_band;
         lost_fraction_limit: Real = lost_fraction_limit;
         energy_growth_limit: Real = energy_growth_limit;

@@ -14,7 +14,8 @@ use serde::{Deserialize, Serialize};
 use self::defaults::serde_default as default;
 pub(crate) use self::defaults::serde_default;
 pub use self::defaults::{
-    BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, IntegratorDefaults, ShiftingDefaults, TensileDefaults, ViscosityDefaults,
+    BoundaryDefaults, DampingDefaults, Defaults, DiffusionDefaults, GaugeDefaults, IntegratorDefaults, ShiftingDefaults, TensileDefaults,
+    ViscosityDefaults,
 };
 pub use self::geometry::{BoxSpec, Damping, Obstacle};
 pub use self::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, Shifting, ShiftingModel, Slip, Viscosity};
@@ -231,6 +232,18 @@ mod tests {
         let plain = Scene::from_json(&dambreak_json("")).expect("valid scene");
         assert_eq!((plain.gravity, plain.coefh, plain.boundary), (d.gravity, d.coefh, super::defaults::serde_default::boundary()));
         assert_eq!((plain.density_band, plain.energy_growth_limit), (d.density_band, d.energy_growth_limit));
+        // gauges without a method take the Defaults' methods
+        let gauged = Scene::from_json(&dambreak_json(
+            r#", "gauges": [{"type": "elevation", "name": "e", "position": [2, 0], "interval": 0.1},
+                            {"type": "runup", "name": "r", "start": [2, 0], "end": [3, 1], "interval": 0.1}]"#,
+        ))
+        .expect("valid scene");
+        match (&gauged.gauges[0], &gauged.gauges[1]) {
+            (GaugeSpec::Elevation { method: e, .. }, GaugeSpec::Runup { method: r, .. }) => {
+                assert_eq!((*e, *r), (d.gauges.elevation_method, d.gauges.runup_method));
+            }
+            other => panic!("gauges parsed as {other:?}"),
+        }
     }
 
     #[test]
