@@ -177,6 +177,17 @@ class _Gauge:
         if self.interval is not None:
             _set(self, "interval", _positive(f"{prefix}.interval", self.interval))
 
+    def _check_choices(self, prefix: str) -> None:
+        """The string fields of :attr:`CHOICES` that are set, each one of its words."""
+        for field, words in self.CHOICES.items():
+            if getattr(self, field) is not None:
+                _choice(f"{prefix}.{field}", getattr(self, field), words)
+
+    def _chosen(self) -> dict[str, str]:
+        """The :attr:`CHOICES` fields that are set, for the core's gauge JSON (an unset one is
+        left out: the core's default applies)."""
+        return {f: getattr(self, f) for f in self.CHOICES if getattr(self, f) is not None}
+
     def default_name(self, scene: FlumeScene, index: int) -> str:
         """The name of the ``index``-th unnamed gauge of this kind: ``TAG{index}``."""
         return f"{self.TAG}{index}"
@@ -256,8 +267,7 @@ class ElevationGauge(_Gauge):
         _set(self, "x", _number("gauge.x", self.x))
         if self.y is not None:
             _set(self, "y", _number("gauge.y", self.y))
-        if self.method is not None:
-            _choice("gauge.method", self.method, self.CHOICES["method"])
+        self._check_choices("gauge")
         self._check_name_and_interval("gauge")
 
     def y_in(self, scene: FlumeScene) -> float:
@@ -296,8 +306,8 @@ class ElevationGauge(_Gauge):
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         """The core's gauge JSON."""
         pos = [self.x, 0.0] if scene.dim == 2 else [self.x, self.y_in(scene), 0.0]
-        method = {} if self.method is None else {"method": self.method}
-        return {"type": self.TAG, "name": name, "position": pos, **method, "interval": interval}
+        return {"type": self.TAG, "name": name, "position": pos, **self._chosen(),
+                "interval": interval}
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:
@@ -597,16 +607,14 @@ class RunupGauge(_Gauge):
                 raise SceneError("runup.end: must be uphill of start (higher z)")
             _set(self, "start", a)
             _set(self, "end", b)
-        if self.method is not None:
-            _choice("runup.method", self.method, self.CHOICES["method"])
+        self._check_choices("runup")
         self._check_name_and_interval("runup")
 
     def to_core(self, scene: FlumeScene, name: str, interval: float) -> dict[str, Any]:
         """The core's gauge JSON (the segment resolved: see :attr:`FlumeScene.runup_gauge`)."""
         assert self.start is not None and self.end is not None
-        method = {} if self.method is None else {"method": self.method}
         return {"type": self.TAG, "name": name, "start": list(self.start),
-                "end": list(self.end), **method, "interval": interval}
+                "end": list(self.end), **self._chosen(), "interval": interval}
 
     @classmethod
     def read(cls, gauges: FlumeGauges, raws: list[dict[str, Any]]) -> None:

@@ -183,9 +183,8 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     let support2 = F::of(c.support * c.support);
     let tait = TaitPair::<F>::new(c);
     let (eta2, h) = (F::of(c.eta2), F::of(c.h));
-    // the viscous terms of fluid-wall pairs scaled by the wall factor (Viscosity::wall_factor)
-    let wall = if fluid { 1.0 } else { c.visc_wall_factor };
-    let (alpha, lam_coef, rho0) = (F::of(c.alpha * wall), F::of(4.0 * c.nu * wall), F::of(c.rho0));
+    let (alpha, nu) = c.viscous_coefficients(!fluid);
+    let (alpha, lam_coef, rho0) = (F::of(alpha), F::of(4.0 * nu), F::of(c.rho0));
     let tens = TensilePair::<F>::new(&c.tensile);
     let three = D::DIM == 3;
     for k in 0..n_pad {

@@ -187,8 +187,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
             let mut max_visc = 0.0f64;
             for group in 0..GROUPS {
                 let is_fluid = group == GROUP_FLUID;
-                // the viscous terms of fluid-wall pairs scaled by the wall factor
-                let (alpha, nu) = if is_fluid { (c.alpha, c.nu) } else { (c.alpha * c.visc_wall_factor, c.nu * c.visc_wall_factor) };
+                let (alpha, nu) = c.viscous_coefficients(!is_fluid);
                 for_each_pair(grid, support2, group, f.pos, pa, |b, r, r2, dist| {
                     let rhob = f.rho[b];
                     // One division gives the pair's four reciprocals: 1/(r^2 + eta^2),

@@ -72,6 +72,17 @@ pub struct Constants {
 }
 
 impl Constants {
+    /// `(alpha, nu)` of the viscous terms of a pair: as given between fluid particles, times
+    /// the wall factor ([`Viscosity::wall_factor`]) against a wall particle.
+    #[inline(always)]
+    pub fn viscous_coefficients(&self, wall: bool) -> (Real, Real) {
+        if wall {
+            (self.alpha * self.visc_wall_factor, self.nu * self.visc_wall_factor)
+        } else {
+            (self.alpha, self.nu)
+        }
+    }
+
     /// The densities the monitor accepts: `rho0 (1 -+ density_band)`.
     pub fn density_limits(&self) -> (Real, Real) {
         (self.rho0 * (1.0 - self.density_band), self.rho0 * (1.0 + self.density_band))

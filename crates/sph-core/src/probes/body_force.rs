@@ -59,8 +59,7 @@ fn wall_particle_force<D: Dim, K: Kernel>(view: &ProbeView<'_, D, K>, w: usize) 
     let (xw, vw, rhow) = (p.pos[w], p.vel[w], p.rho[w]);
     let pw_rho2 = pressure(c, rhow) / (rhow * rhow);
     let cw = sound_speed(c, rhow);
-    // the fluid's viscous terms against walls carry the wall factor (Viscosity::wall_factor)
-    let (alpha, nu) = (c.alpha * c.visc_wall_factor, c.nu * c.visc_wall_factor);
+    let (alpha, nu) = c.viscous_coefficients(true);
     let mut sum = D::V::ZERO;
     for_each_pair(view.grid, c.support * c.support, GROUP_FLUID, &p.pos, xw, |a, r_wa, r2, dist| {
         if p.kind[a] == KIND_EXCLUDED {
