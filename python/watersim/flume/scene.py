@@ -509,8 +509,9 @@ class FlumeScene(SceneBuilder):
             return law
         extra = max(law.forward, law.backward)
         if law.law["type"] == "harmonic":
-            amplitudes = np.asarray([c[0] for c in law.law["components"]])
-            extra = min(extra, 2.0 * float(np.sqrt(np.sum(amplitudes**2))))
+            # math.hypot scales, so an absurd amplitude's square does not overflow
+            amplitudes = [float(c[0]) for c in law.law["components"]]
+            extra = min(extra, 2.0 * math.hypot(*amplitudes))
         return dataclasses.replace(law, forward=law.forward + extra,
                                    backward=law.backward + extra)
 
