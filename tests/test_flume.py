@@ -100,6 +100,8 @@ def test_bad_objects_are_refused_naming_the_field(make: Any, field: str) -> None
         ({"sample_interval": -1.0}, "sample_interval"),
         ({"paddle": ws.Flap(hinge_z=0.5)}, "paddle.hinge_z"),
         ({"paddle": "piston"}, "paddle"),
+        # a 0.05 s wave is 3.9 mm long: fewer than 4 dp of 0.02 m
+        ({"wave": ws.RegularWave(height=0.001, period=0.05)}, "wave.period"),
     ],
 )
 def test_bad_scenes_are_refused_naming_the_field(kwargs: dict[str, Any], field: str) -> None:

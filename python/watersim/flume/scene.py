@@ -292,6 +292,7 @@ class FlumeScene(SceneBuilder):
             raise SceneError(f"dp: {dp:g} m would need about {n_fluid:.3g} fluid particles; "
                              "use a larger dp")
         self._check_lattice()
+        self.wave.check_resolved(dp, flume.depth, self.g)
         law = self.law
         if not (math.isfinite(law.forward) and math.isfinite(law.backward)):
             raise SceneError(f"wave: the paddle motion is not finite (excursion {law.forward!r} m)")

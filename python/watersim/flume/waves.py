@@ -50,6 +50,11 @@ class _SpectralWave:
                              "Piston (wave_theory.second_order_piston_motion); use order=1")
 
 
+MIN_WAVELENGTH_DP = 4.0
+"""Fewest particle spacings per wavelength a regular wave is given (the kernel's support spans
+about four): a shorter wave is refused, not run as noise."""
+
+
 class _Wave:
     """What every wave tells the scene: its paddle law, defaults and checks (each wave overrides
     what differs)."""
@@ -76,6 +81,10 @@ class _Wave:
 
     def warn(self, paddle: Paddle, depth: float, g: float) -> None:
         """Warn of a wave beyond the theory of its generation (none to check by default)."""
+
+    def check_resolved(self, dp: float, depth: float, g: float) -> None:
+        """Refuse a wave the particles cannot carry, before its paddle law is computed (none
+        to check by default)."""
 
     def check_in(self, scene: FlumeScene) -> None:
         """Refuse a wave this flume cannot make (none to check by default)."""
@@ -132,6 +141,16 @@ class RegularWave(_Wave):
     def design_height(self) -> float:
         return self.height
 
+    def check_resolved(self, dp: float, depth: float, g: float) -> None:
+        """A wavelength of fewer than :data:`MIN_WAVELENGTH_DP` particle spacings is refused
+        (its deep-water modes would also overflow the wave-maker theory's cosh)."""
+        wavelength = float(wt.wavelength(self.period, depth, g))
+        if wavelength < MIN_WAVELENGTH_DP * dp:
+            raise SceneError(
+                f"wave.period: its wavelength ({wavelength:.3g} m) is shorter than "
+                f"{MIN_WAVELENGTH_DP:g} dp (dp = {dp:g} m): no particle lattice carries it; use a "
+                "longer period or a smaller dp")
+
     def generation_theory(self, paddle: Paddle, depth: float, g: float) -> wt.RegularTheory:
         """The theory the paddle law follows: ``theory``, or the one ``"auto"`` picks."""
         if self.theory == "auto":
@@ -173,7 +192,9 @@ class RegularWave(_Wave):
         stroke = law.stroke
         transfer = paddle.hinged_transfer(law.wavenumber, depth)
         if transfer is not None:
-            stroke = self.height / float(transfer)
+            # a wave far longer than the depth makes a hinged paddle's transfer underflow to 0:
+            # an infinite stroke, refused naming the wave by the flume's excursion check
+            stroke = self.height / float(transfer) if transfer else math.inf
         gain = self.stroke_gain
         components = [[0.5 * stroke * gain, law.omega, law.phase]]
         # the target at the paddle: X = (S/2) sin(theta) makes eta = (H/2) cos(theta) there (the
