@@ -13,7 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from watersim import plotting
-from watersim.fields import grid_vorticity, particle_vorticity
+from watersim.fields import _grad_factor, grid_vorticity, particle_vorticity
+from watersim.numerics import KERNELS
 
 DP = 0.02
 
@@ -28,7 +29,7 @@ finite = st.floats(-3.0, 3.0, allow_nan=False)
 
 
 @settings(max_examples=20, deadline=None)
-@given(a=finite, b=finite, c=finite, d=finite, kernel=st.sampled_from(["wendland", "cubic_spline"]))
+@given(a=finite, b=finite, c=finite, d=finite, kernel=st.sampled_from(KERNELS))
 def test_a_linear_2d_field_gives_its_vorticity_at_every_particle(
         a: float, b: float, c: float, d: float, kernel: str) -> None:
     x = _lattice(2, jitter=0.15)
@@ -37,6 +38,19 @@ def test_a_linear_2d_field_gives_its_vorticity_at_every_particle(
     omega = particle_vorticity(x, v, np.full(len(x), DP**2), 1.3 * DP, kernel)
     assert np.isfinite(omega).all()
     np.testing.assert_allclose(omega, b - c, atol=1e-9)
+
+
+@pytest.mark.parametrize("kernel", KERNELS)
+@pytest.mark.parametrize("dim", [2, 3])
+def test_each_kernel_gradient_is_that_of_a_normalised_kernel(kernel: str, dim: int) -> None:
+    """By parts, a kernel with unit integral has ``int dW/dr V(r) dr = -1``, with ``V(r)`` the
+    volume of the ball of radius r (pi r^2 in 2D, 4/3 pi r^3 in 3D): the gradient factor
+    ``(dW/dr)/r`` of each of the core's kernels, written again in fields.py, must meet it."""
+    h = 0.7
+    r = np.linspace(0.0, 2.0 * h, 200_001)[1:]
+    ball = np.pi * r**2 if dim == 2 else 4.0 / 3.0 * np.pi * r**3
+    dw_dr = _grad_factor(kernel, r, h, dim) * r
+    assert np.trapezoid(dw_dr * ball, r) == pytest.approx(-1.0, abs=1e-6)
 
 
 def test_a_rigid_rotation_in_3d_gives_twice_its_angular_velocity() -> None:

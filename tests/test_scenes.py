@@ -135,7 +135,7 @@ BAD_DAMBREAK = [
     ({"height": 3.0}, "height", "tank_height"),
     ({"width": -1.0}, "width", "positive"),
     ({"tank_length": math.nan}, "tank_length", "finite"),
-    ({"kernel": "gaussian"}, "kernel", "'wendland', 'cubic_spline'"),
+    ({"kernel": "gaussian"}, "kernel", "'wendland', 'wendland_c4', 'cubic_spline'"),
     ({"viscosity": "sph"}, "viscosity", "'artificial', 'laminar', 'laminar_sps'"),
     ({"diffusion": "ddt"}, "diffusion", "'none', 'molteni', 'fourtakas'"),
     ({"integrator": "rk4"}, "integrator", "'symplectic', 'verlet'"),

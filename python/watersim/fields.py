@@ -33,13 +33,17 @@ def _grad_factor(kernel: str, r: FloatArray, h: float, dim: int) -> FloatArray:
         alpha = 7.0 / (4.0 * math.pi * h**2) if dim == 2 else 21.0 / (16.0 * math.pi * h**3)
         t = np.clip(1.0 - 0.5 * q, 0.0, None)
         return -5.0 * alpha / h**2 * t**3
+    if kernel == "wendland_c4":  # Wendland C4: dW/dq = -14/3 alpha_D q (1 - q/2)^5 (1 + 5/2 q)
+        alpha = 9.0 / (4.0 * math.pi * h**2) if dim == 2 else 495.0 / (256.0 * math.pi * h**3)
+        t = np.clip(1.0 - 0.5 * q, 0.0, None)
+        return -14.0 / 3.0 * alpha / h**2 * t**5 * (1.0 + 2.5 * q)
     if kernel == "cubic_spline":  # Monaghan & Lattanzio (1985) M4
         alpha = 10.0 / (7.0 * math.pi * h**2) if dim == 2 else 1.0 / (math.pi * h**3)
         t = np.clip(2.0 - q, 0.0, None)
         with np.errstate(divide="ignore", invalid="ignore"):
             outer = -0.75 * t**2 / np.maximum(q, 1e-12)
         return alpha / h**2 * np.where(q < 1.0, -3.0 + 2.25 * q, outer)
-    raise ValueError(f"kernel: unknown kernel {kernel!r} (wendland, cubic_spline)")
+    raise ValueError(f"kernel: unknown kernel {kernel!r} (wendland, wendland_c4, cubic_spline)")
 
 
 def particle_vorticity(positions: npt.ArrayLike, velocities: npt.ArrayLike,
@@ -54,7 +58,8 @@ def particle_vorticity(positions: npt.ArrayLike, velocities: npt.ArrayLike,
         positions, velocities: (N, dim) of the particles to use (usually the fluid's) [m], [m/s].
         volumes: (N,) ``m / rho`` [m^dim].
         h: smoothing length [m] (the support is ``2 h``, as both core kernels have).
-        kernel: ``"wendland"`` or ``"cubic_spline"`` (``Simulation.params()["kernel"]``).
+        kernel: ``"wendland"``, ``"wendland_c4"`` or ``"cubic_spline"``
+            (``Simulation.params()["kernel"]``).
 
     Returns:
         2D: (N,) ``omega_y = du/dz - dw/dx`` [1/s]; 3D: (N, 3) ``curl v``. NaN where the

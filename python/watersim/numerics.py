@@ -94,9 +94,10 @@ def core_default(key: str) -> Any:
 # ------------------------------------------------------------------------------------------------
 # options named by a word, and ranges
 
-KERNELS: tuple[str, ...] = ("wendland", "cubic_spline")
-"""Kernel names the core knows (Wendland C2 does not suffer the cubic spline's pairing
-instability)."""
+KERNELS: tuple[str, ...] = ("wendland", "wendland_c4", "cubic_spline")
+"""Kernel names the core knows (``KernelKind`` in ``crates/sph-core/src/kernel.rs``):
+``"wendland"`` (Wendland C2, free of the cubic spline's pairing instability), ``"wendland_c4"``
+(smoother, two multiplications more per pair) and ``"cubic_spline"``."""
 
 FORCE_PRECISIONS: tuple[str, ...] = ("f64", "f32")
 """Arithmetic of the force loop's pair terms: ``"f64"``, or ``"f32"`` (eight pairs to an AVX2
@@ -311,8 +312,9 @@ class Shifting(Option):
     a free-surface ramp on the particle divergence) or the delta-plus-SPH shifting
     (``model="delta_plus"``: Sun et al. 2017, ``dr = -A h U_max dt sum [1 + R (W/W(dp))^4]
     grad W V``, no shift on the free surface found from the renormalisation matrix, only
-    along the surface next to it). ``delta_plus`` raises a flume's mean level (by 1.1 H over
-    ten wavelengths in ``flume2d-long`` at H/dp 5, docs/physics-options.md): not for flumes yet.
+    along the surface within a kernel support of it, none towards a wall). ``delta_plus``
+    lowers a flume's mean level (by 0.15-0.24 H in ``flume2d-long`` at H/dp 5, where
+    particles pass through the bed after 17 s, docs/physics-options.md): not for flumes yet.
 
     Attributes:
         model: ``"lind"`` or ``"delta_plus"``.

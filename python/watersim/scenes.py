@@ -93,7 +93,8 @@ class SceneBuilder:
     Attributes:
         dim: 2 or 3.
         dp: initial particle spacing [m].
-        kernel: ``"wendland"`` (Wendland C2) or ``"cubic_spline"``.
+        kernel: ``"wendland"`` (Wendland C2), ``"wendland_c4"`` (Wendland C4) or
+            ``"cubic_spline"``.
         coefh: ``h = coefh * sqrt(dim) * dp`` [-], at least 0.5.
         coefsound: ``c0 = coefsound * sqrt(g * h_swl)`` [-].
         gamma: Tait exponent [-].

@@ -1,6 +1,6 @@
 //! Smoothing kernels with analytic gradients (seed 000; DESIGN.md section 2).
 //!
-//! Both kernels have compact support `2h`. `grad_factor(r)` returns `(dW/dr) / r`, so that
+//! All kernels have compact support `2h`. `grad_factor(r)` returns `(dW/dr) / r`, so that
 //! `grad_a W_ab = r_ab * grad_factor(|r_ab|)` without a division by `r` in the hot loop.
 
 use serde::{Deserialize, Serialize};
@@ -13,6 +13,7 @@ use crate::math::{PairFloat, Real};
 pub enum KernelKind {
     CubicSpline,
     Wendland,
+    WendlandC4,
 }
 
 impl KernelKind {
@@ -20,6 +21,7 @@ impl KernelKind {
         match self {
             KernelKind::CubicSpline => "cubic_spline",
             KernelKind::Wendland => "wendland",
+            KernelKind::WendlandC4 => "wendland_c4",
         }
     }
 }
@@ -158,6 +160,56 @@ impl Kernel for WendlandC2 {
     }
 }
 
+/// Wendland C4 (Wendland 1995; with support `2h` as in Dehnen & Aly 2012, Table 1):
+/// `alpha_D (1 - q/2)^6 (35/12 q^2 + 3 q + 1)`, `alpha_D = 9/(4 pi h^2)` (2D), `495/(256 pi h^3)`
+/// (3D). Smoother than C2 (a continuous fourth derivative), with a smaller error in the kernel
+/// sums on disordered particles at the same `h`; two more multiplications per pair.
+#[derive(Clone, Copy, Debug)]
+pub struct WendlandC4 {
+    h: Real,
+    inv_h: Real,
+    alpha_d: Real,
+    /// `-14/3 alpha_D / h^2`, the constant of [`Kernel::grad_factor`].
+    grad_coef: Real,
+}
+
+impl Kernel for WendlandC4 {
+    const KIND: KernelKind = KernelKind::WendlandC4;
+    fn new(h: Real, dim: usize) -> Self {
+        let pi = std::f64::consts::PI;
+        let alpha_d = if dim == 2 { 9.0 / (4.0 * pi * h * h) } else { 495.0 / (256.0 * pi * h * h * h) };
+        let inv_h = 1.0 / h;
+        Self { h, inv_h, alpha_d, grad_coef: -14.0 / 3.0 * alpha_d * inv_h * inv_h }
+    }
+    fn h(&self) -> Real {
+        self.h
+    }
+    #[inline(always)]
+    fn w(&self, r: Real) -> Real {
+        let q = r * self.inv_h;
+        if q < 2.0 {
+            let t = 1.0 - 0.5 * q;
+            let t2 = t * t;
+            self.alpha_d * t2 * t2 * t2 * ((35.0 / 12.0) * q * q + 3.0 * q + 1.0)
+        } else {
+            0.0
+        }
+    }
+    #[inline(always)]
+    fn grad_factor_in<F: PairFloat>(&self, r: F) -> F {
+        let q = r * F::of(self.inv_h);
+        if q < F::of(2.0) {
+            // dW/dq = -14/3 alpha_D q (1 - q/2)^5 (1 + 5/2 q), so
+            // (dW/dr)/r = -14/3 alpha_D (1 - q/2)^5 (1 + 5/2 q) / h^2.
+            let t = F::of(1.0) - F::of(0.5) * q;
+            let t2 = t * t;
+            F::of(self.grad_coef) * (t2 * t2 * t) * (F::of(1.0) + F::of(2.5) * q)
+        } else {
+            F::of(0.0)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -243,6 +295,18 @@ mod tests {
     #[test]
     fn wendland_gradient_matches_finite_differences() {
         check_gradient::<WendlandC2>();
+    }
+    #[test]
+    fn wendland_c4_integrates_to_one() {
+        check_normalisation::<WendlandC4>();
+    }
+    #[test]
+    fn wendland_c4_gradient_matches_finite_differences() {
+        check_gradient::<WendlandC4>();
+    }
+    #[test]
+    fn wendland_c4_support_ends_at_2h() {
+        check_support::<WendlandC4>();
     }
     #[test]
     fn cubic_spline_support_ends_at_2h() {

@@ -24,7 +24,7 @@ pub mod simulation;
 pub mod threads;
 
 pub use error::{Error, InstabilityKind, Result};
-pub use kernel::{CubicSpline, Kernel, KernelKind, WendlandC2};
+pub use kernel::{CubicSpline, Kernel, KernelKind, WendlandC2, WendlandC4};
 pub use math::{Dim, Dim2, Dim3, Real};
 pub use motion::{MotionLaw, Paddle, PaddleKind};
 pub use probes::{GaugeRecord, GaugeSpec, RunupMethod, SurfaceMethod};
@@ -50,6 +50,7 @@ fn build_dim<D: Dim>(scene: Scene) -> Result<Box<dyn Simulation>> {
     match scene.kernel {
         KernelKind::CubicSpline => build_kernel::<D, CubicSpline>(scene),
         KernelKind::Wendland => build_kernel::<D, WendlandC2>(scene),
+        KernelKind::WendlandC4 => build_kernel::<D, WendlandC4>(scene),
     }
 }
 

@@ -95,6 +95,7 @@ fn results_do_not_depend_on_the_thread_count() {
         r#", "shifting": {"model": "delta_plus"}"#,
         r#", "boundary": {"model": "adami"}"#,
         r#", "force_precision": "f32""#,
+        r#", "kernel": "wendland_c4""#,
     ] {
         let (p1, i1) = run_tank(1, extra);
         let (p2, i2) = run_tank(2, extra);

@@ -161,9 +161,10 @@ pub enum ForcePrecision {
 /// `CFL Ma (2h)^2` is `4 h U_max dt` for `dt = CFL h / c0`, `Ma = U_max / c0`: A = 4), `U_max`
 /// the largest fluid speed of the step; the free surface is found from the smallest eigenvalue
 /// `lambda` of `sum_b (r_b - r_a) (x) grad W_ab V_b` (Marrone et al. 2010; 1 in the bulk,
-/// about 0.5 on a flat surface): not shifted below 0.4, shifted along the surface only
-/// (`(I - n n) dr`, `n` the renormalised normal `-L grad C / |L grad C|`) up to 0.75, in full
-/// above. `surface_threshold` belongs to `lind` and is refused here.
+/// about 0.5 on a flat surface): not shifted up to 0.75 (on the surface), shifted along the
+/// surface only (`(I - n n) dr`, `n` the surface's normal) within the kernel support of a
+/// surface particle, in full elsewhere. `surface_threshold` belongs to `lind` and is refused
+/// here.
 ///
 /// Either shift only moves particles; it does not correct the velocity or density (as
 /// DualSPHysics' Lind shifting and the 2017 delta-plus-SPH).

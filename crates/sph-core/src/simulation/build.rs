@@ -14,7 +14,7 @@ use crate::physics::eos::density_at_pressure;
 use crate::physics::forces::fluid_force_loop;
 use crate::physics::Constants;
 use crate::probes::{GaugeRecord, GaugeSpec};
-use crate::scene::{Integrator, Scene, Viscosity};
+use crate::scene::{Integrator, Scene, ShiftingModel, Viscosity};
 
 impl<D: Dim, K: Kernel> Solver<D, K> {
     pub fn new(scene: Scene) -> Result<Self> {
@@ -89,6 +89,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
             threshold: sh.threshold(D::DIM),
             grad: vec![D::V::ZERO; n_fluid],
             div: vec![0.0; n_fluid],
+            normal: if sh.model == ShiftingModel::DeltaPlus { vec![D::V::ZERO; n_fluid] } else { Vec::new() },
         });
         // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };

@@ -178,6 +178,8 @@ struct ShiftState<D: Dim> {
     /// `lind`: the particle divergence; `delta_plus`: the renormalisation matrix's smallest
     /// eigenvalue.
     div: Vec<Real>,
+    /// `delta_plus`: the outward surface normal's scratch (empty for `lind`).
+    normal: Vec<D::V>,
     /// `delta_plus`: the largest fluid speed at the last shifting pass.
     u_max: Real,
 }
@@ -465,7 +467,7 @@ impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()
-            + self.shift.as_ref().map_or(0, |s| s.grad.capacity() * v + s.div.capacity() * r)
+            + self.shift.as_ref().map_or(0, |s| (s.grad.capacity() + s.normal.capacity()) * v + s.div.capacity() * r)
             + self.moving_ref.capacity() * v
             + self.wall_body.capacity() * size_of::<u16>()
             + self.walls.memory_bytes()

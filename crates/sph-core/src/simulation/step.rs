@@ -88,7 +88,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         match shift.model {
             ShiftingModel::Lind => shifting_fields(c, kernel, grid, fields, &mut shift.grad, &mut shift.div),
             ShiftingModel::DeltaPlus => {
-                shift.u_max = delta_plus_fields(c, kernel, grid, fields, &mut shift.grad, &mut shift.div);
+                shift.u_max = delta_plus_fields(c, kernel, grid, fields, &mut shift.grad, &mut shift.normal, &mut shift.div);
             }
         }
     }
