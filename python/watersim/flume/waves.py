@@ -144,7 +144,10 @@ class RegularWave(_Wave):
     def check_resolved(self, dp: float, depth: float, g: float) -> None:
         """A wavelength of fewer than :data:`MIN_WAVELENGTH_DP` particle spacings is refused
         (its deep-water modes would also overflow the wave-maker theory's cosh)."""
-        wavelength = float(wt.wavelength(self.period, depth, g))
+        # an absurd period overflows the dispersion relation: a NaN is left to the paddle
+        # law's own refusal of a non-finite motion, an overflow to 0 m is refused here
+        with np.errstate(all="ignore"):
+            wavelength = float(wt.wavelength(self.period, depth, g))
         if wavelength < MIN_WAVELENGTH_DP * dp:
             raise SceneError(
                 f"wave.period: its wavelength ({wavelength:.3g} m) is shorter than "
