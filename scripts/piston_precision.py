@@ -5,7 +5,8 @@
     python3 scripts/piston_precision.py compare OUT_f32.npy OUT_f64.npy
 
 The elevation is the highest fluid particle within dp of each station, every 0.01 s (a coarse
-measure, enough to see whether the precision changes the wave: docs/benchmarks.md, "f32 against f64 pair terms").
+measure, enough to see whether the precision changes the wave: docs/benchmarks.md, "f32
+against f64 pair terms").
 """
 
 from __future__ import annotations

@@ -87,7 +87,8 @@ def test_grid_vorticity_of_a_shear_in_2d_and_3d_and_dry_points() -> None:
     zz, yy, xx = np.meshgrid(z, y, x, indexing="ij")
     spin = np.array([0.3, -1.0, 2.0])
     v3 = np.cross(spin, np.stack([xx, yy, zz], axis=-1))
-    np.testing.assert_allclose(grid_vorticity(v3, (0.05, 0.1, 0.1)), np.broadcast_to(2 * spin, v3.shape))
+    np.testing.assert_allclose(grid_vorticity(v3, (0.05, 0.1, 0.1)),
+                               np.broadcast_to(2 * spin, v3.shape))
     with pytest.raises(ValueError, match="2 points"):
         grid_vorticity(velocity[:, :1], (0.05, 0.1))
 

@@ -26,8 +26,8 @@ import watersim as ws
 from conftest import assert_clean_failure, run_cli
 from watersim import cli, plotting
 from watersim import scenefile as sf
-from watersim.flume import FlumeGauges, FlumeScene, analyse_flume
 from watersim.cli import builder_from_args
+from watersim.flume import FlumeGauges, FlumeScene, analyse_flume
 from watersim.flume.analyse import MIN_WINDOW_PERIODS, UNITS
 from watersim.flume_cases import FLUME_CASES
 

@@ -234,8 +234,9 @@ def test_tensile_correction_round_trips_and_is_off_by_default() -> None:
     assert ws.Tank(kernel="cubic_spline", tensile_correction="monaghan").tensile_correction == on
     assert ws.Tank(kernel="cubic_spline",
                    tensile_correction={"model": "monaghan"}).tensile_correction == on
-    assert cli.builder_from_args("dambreak2d", ["kernel=cubic_spline", "tensile_correction=monaghan"]
-                                 ).tensile_correction == on
+    on_by_set = cli.builder_from_args("dambreak2d",
+                                      ["kernel=cubic_spline", "tensile_correction=monaghan"])
+    assert on_by_set.tensile_correction == on
     set_one = cli.builder_from_args("dambreak2d", ["kernel=cubic_spline",
                                                    "tensile_correction.epsilon_neg=0.25"])
     assert set_one.tensile_correction == nm.TensileCorrection(epsilon_neg=0.25)

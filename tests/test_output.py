@@ -27,7 +27,8 @@ def test_snapshots_round_trip_through_meshio(tmp_path: Path, dim: int) -> None:
     mesh = meshio.read(path)
     n = sim.n_particles
     assert mesh.points.shape == (n, 3)
-    shapes = {"velocity": (n, 3), "vorticity": (n, 3), "density": (n,), "pressure": (n,), "kind": (n,), "id": (n,)}
+    shapes = {"velocity": (n, 3), "vorticity": (n, 3), "density": (n,), "pressure": (n,),
+              "kind": (n,), "id": (n,)}
     for field, shape in shapes.items():
         assert mesh.point_data[field].shape == shape, field
     order = np.argsort(np.asarray(sim.core.ids))

@@ -141,7 +141,8 @@ def test_load_gives_labelled_records(straight: Path) -> None:
     assert pressure.dims == ("time_p", "point_p") and pressure.attrs["units"] == "Pa"
     assert data["points_p"].values.tolist() == [[0.5, 0.06], [0.5, 0.3]]
     # the upper point is above the water (NaN, a low kernel sum), the lower one under it
-    assert np.all(np.isnan(pressure.values[:, 1])) and np.all(data["kernel_sum_p"].values[:, 1] < 0.5)
+    assert np.all(np.isnan(pressure.values[:, 1]))
+    assert np.all(data["kernel_sum_p"].values[:, 1] < 0.5)
     assert np.nanmean(pressure.values[:, 0]) > 0.5 * 1000.0 * 9.81 * (0.24 - 0.06)
     csv = np.genfromtxt(straight / "gauges.csv", delimiter=",", names=True)
     assert np.array_equal(csv["t_s"], data["time"].values)

@@ -59,7 +59,8 @@ REL_TOL = 1e-12
 
 
 def differences(got: Any, want: Any, path: str = "") -> list[str]:
-    """Paths where ``got`` differs from ``want``: floats beyond ``REL_TOL``, anything else at all."""
+    """Paths where ``got`` differs from ``want``: floats beyond ``REL_TOL``, anything else at
+    all."""
     if isinstance(got, dict) and isinstance(want, dict):
         out = [f"{path}/{k}: missing" for k in sorted(set(want) - set(got))]
         out += [f"{path}/{k}: not recorded" for k in sorted(set(got) - set(want))]
@@ -69,7 +70,8 @@ def differences(got: Any, want: Any, path: str = "") -> list[str]:
     if isinstance(got, list) and isinstance(want, list):
         if len(got) != len(want):
             return [f"{path}: {len(got)} items, recorded {len(want)}"]
-        return [d for i, (g, w) in enumerate(zip(got, want)) for d in differences(g, w, f"{path}[{i}]")]
+        pairs = enumerate(zip(got, want, strict=True))
+        return [d for i, (g, w) in pairs for d in differences(g, w, f"{path}[{i}]")]
     if (isinstance(got, float) and isinstance(want, (int, float)) and not isinstance(want, bool)
             and math.isclose(got, want, rel_tol=REL_TOL, abs_tol=1e-300)):
         return []
@@ -140,6 +142,7 @@ def test_params_come_from_the_cores_params() -> None:
 
 
 if __name__ == "__main__" and sys.argv[1:] == ["--write"]:
-    rows = [f"{json.dumps(n)}: {json.dumps(core_scene(n), sort_keys=True)}" for n in sorted(_case_names())]
+    rows = [f"{json.dumps(n)}: {json.dumps(core_scene(n), sort_keys=True)}"
+            for n in sorted(_case_names())]
     GOLDEN.write_text("{\n" + ",\n".join(rows) + "\n}\n")  # one case a line: diffs name the case
     print(f"written: {GOLDEN}")

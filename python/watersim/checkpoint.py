@@ -29,7 +29,9 @@ from ._files import atomic_write
 from ._version import __version__
 from .simulation import Simulation
 
-__all__ = ["LastGood", "check_state", "load_checkpoint", "read_header", "save_checkpoint", "write_state"]
+__all__ = [
+    "LastGood", "check_state", "load_checkpoint", "read_header", "save_checkpoint", "write_state",
+]
 
 _ARRAYS = (
     "positions", "velocities", "densities", "ids", "kinds", "velocities_prev", "densities_prev",

@@ -344,7 +344,8 @@ def _run_options(args: argparse.Namespace, scene: SceneFile) -> tuple[Path, floa
     if snapshot_every is None:
         snapshot_every = scene.output.snapshot_every
     until = float(scene.builder.until)  # type: ignore[arg-type]
-    for name, every in (("--sample-every", args.sample_every), ("--snapshot-every", snapshot_every)):
+    intervals = (("--sample-every", args.sample_every), ("--snapshot-every", snapshot_every))
+    for name, every in intervals:
         if every is not None:
             _check_resolved(name, every, until)
     if args.save_last_good:  # checked now: the run must not end in a save that cannot be done

@@ -156,7 +156,8 @@ class Checkpointer:
         """Writes a checkpoint of ``sim`` now and removes all but the last :data:`KEEP`."""
         self.directory.mkdir(parents=True, exist_ok=True)
         path = self.directory / f"ckpt_{sim.steps:012d}.npz"
-        write_state(sim.core.checkpoint(), sim.scene, path, extras={**self.run_info, **_monitor_state(sim)})
+        extras = {**self.run_info, **_monitor_state(sim)}
+        write_state(sim.core.checkpoint(), sim.scene, path, extras=extras)
         self._last_wall = time.perf_counter()
         self.written += 1
         for old in checkpoints(self.directory.parent)[:-KEEP]:

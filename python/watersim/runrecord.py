@@ -13,8 +13,8 @@ import os
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from ._version import __version__
 from ._core import InstabilityError
+from ._version import __version__
 
 __all__ = [
     "MEASURES",
