@@ -264,6 +264,58 @@ def test_tensile_correction_round_trips_and_is_off_by_default() -> None:
             _core.Simulation(json.dumps(tank | {"kernel": kernel, "tensile_correction": table}))
 
 
+RIEMANN_COMPANIONS = {"viscosity": "laminar", "diffusion": "none", "integrator": "symplectic"}
+
+
+def test_riemann_solver_round_trips_and_refuses_what_it_replaces() -> None:
+    """The Riemann solver (``riemann``, ``physics/riemann.rs``): off unless set; through the
+    core, ``--set`` and a scene file and back; with the artificial viscosity, a density
+    diffusion, the Verlet integrator or f32 pair terms refused naming that field, in Python and
+    in the core (the defaults of viscosity and diffusion are refused too)."""
+    assert [nm.core_default(f"riemann.{k}") for k in ("model", "limiter")] == ["acoustic", 3.0]
+    b = ws.Tank(riemann=nm.RiemannSolver(limiter=2.0), until=0.01, **RIEMANN_COMPANIONS)
+    assert b.to_scene()["riemann"] == {"limiter": 2.0}
+    assert b.resolved_scene()["riemann"] == {"model": "acoustic", "limiter": 2.0}
+    sim = b.build()
+    assert sim.params()["riemann"] == "acoustic"
+    plain = ws.Tank(until=0.01)
+    assert "riemann" not in plain.resolved_scene()
+    assert plain.build().params()["riemann"] is None
+    on = nm.RiemannSolver(model="acoustic")
+    assert ws.Tank(riemann="acoustic", **RIEMANN_COMPANIONS).riemann == on
+    by_set = cli.builder_from_args("dambreak2d", ["riemann=acoustic", "viscosity=laminar",
+                                                  "diffusion=none", "integrator=symplectic"])
+    assert by_set.riemann == on
+    assert "riemann.limiter" in cli.settable_keys("dambreak2d")
+    text = ('type = "tank"\nriemann = { model = "acoustic", limiter = 1.5 }\n'
+            'viscosity = "laminar"\ndiffusion = "none"\n')
+    loaded = sf.loads(text, source="f.toml").builder
+    assert loaded.riemann == nm.RiemannSolver(model="acoustic", limiter=1.5)
+    assert sf.loads(sf.dumps(loaded), source="g.toml").builder == loaded
+    # refusals, each naming its field
+    with pytest.raises(ws.SceneError, match=r"^viscosity: the Riemann solver"):
+        ws.Tank(riemann="acoustic")  # the core's default viscosity is artificial
+    with pytest.raises(ws.SceneError, match=r"^diffusion: the Riemann solver"):
+        ws.Tank(riemann="acoustic", viscosity="laminar")  # the core's default: fourtakas
+    with pytest.raises(ws.SceneError, match=r"^integrator: the Verlet"):
+        ws.Tank(riemann="acoustic", viscosity="laminar", diffusion="none", integrator="verlet")
+    with pytest.raises(ws.SceneError, match=r"^force_precision: "):
+        ws.Tank(riemann="acoustic", force_precision="f32", **RIEMANN_COMPANIONS)
+    with pytest.raises(ws.SceneError, match=r"^riemann\.limiter: "):
+        nm.RiemannSolver(limiter=-1.0)
+    with pytest.raises(ws.SceneError, match=r"^riemann\.model: unknown value"):
+        nm.RiemannSolver(model="hllc")
+    tank = ws.Tank(until=0.01).to_scene()
+    companions = {"viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}}
+    for extra, key in (({}, "viscosity: "),
+                       ({"viscosity": {"model": "laminar"}}, "diffusion: "),
+                       (companions | {"integrator": {"scheme": "verlet"}}, "integrator: "),
+                       (companions | {"riemann": {"limiter": -1.0}}, "riemann.limiter"),
+                       (companions | {"riemann": {"eta": 3}}, "riemann")):
+        with pytest.raises(ws.SceneError, match=key):
+            _core.Simulation(json.dumps(tank | {"riemann": {}} | extra))
+
+
 def test_scene_files_take_option_tables_and_set_their_parameters() -> None:
     scene = sf.load(EXAMPLES / "dambreak2d.toml", ["viscosity.alpha=0.03"])
     assert scene.builder.viscosity == nm.Artificial(alpha=0.03)

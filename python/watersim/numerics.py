@@ -7,11 +7,12 @@ core's default applies (:func:`core_default`, read from ``watersim._core.scene_d
 ``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
 
 A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``boundary``,
-``shifting``, ``tensile_correction``) takes the option object (``Laminar(nu=2e-6)``), its
-model's name (``"laminar"``: that model with the core's parameters) or its scene-file table
-(``{"type": "laminar", "nu": 2e-6}``); a shifting coefficient alone may be given as a number,
-and an option that is off by default (``shifting``, ``tensile_correction``) may be given by its
-law's name (``"monaghan"``).
+``shifting``, ``tensile_correction``, ``riemann``) takes the option object
+(``Laminar(nu=2e-6)``), its model's name (``"laminar"``: that model with the core's
+parameters) or its scene-file table (``{"type": "laminar", "nu": 2e-6}``); a shifting
+coefficient alone may be given as a number,
+and an option that is off by default (``shifting``, ``tensile_correction``, ``riemann``) may be
+given by its law's name (``"monaghan"``, ``"acoustic"``).
 ``--set viscosity.alpha=0.03`` changes one parameter (:func:`from_settings`).
 
 The presets at the end are the numerics the built-in cases choose on purpose, with the reasons;
@@ -65,6 +66,7 @@ __all__ = [
     "Molteni",
     "NoDiffusion",
     "Option",
+    "RiemannSolver",
     "Shifting",
     "Symplectic",
     "TensileCorrection",
@@ -406,6 +408,61 @@ class TensileCorrection(Option):
 
 
 @dataclass(frozen=True, kw_only=True)
+class RiemannSolver(Option):
+    """Riemann-solver SPH with the low-dissipation limiter (Zhang, Hu & Adams 2017, J. Comput.
+    Phys. 335; ``crates/sph-core/src/physics/riemann.rs``): each pair's pressure and continuity
+    terms come from a linearised (acoustic) Riemann problem along the pair, whose dissipation
+    replaces the artificial viscosity (in momentum, on approaching pairs only, quadratic in the
+    approach speed through the limiter) and the density diffusion (in continuity, without its
+    hydrostatic part). Off by default; it needs ``viscosity`` laminar or laminar_sps (water's
+    own viscosity is still added), ``diffusion`` none, the symplectic integrator (Verlet's
+    leapfrog amplifies the solver's density dissipation) and ``force_precision`` f64, and is
+    refused otherwise, naming the field.
+
+    Attributes:
+        model: ``"acoustic"`` (the linearised solver, the only one).
+        limiter: ``eta`` of the limiter ``beta = min(eta max(U_a - U_b, 0) / c, 1)`` [-]
+            (Zhang et al.: 3); 0 drops the momentum's dissipation, a large value gives the
+            full acoustic solver.
+    """
+
+    FIELD: ClassVar[str] = "riemann"
+    MODELS: ClassVar[tuple[str, ...]] = ("acoustic",)
+
+    model: str | None = None
+    limiter: float | None = None
+
+    def check(self) -> None:
+        if self.model is not None:
+            _choice("riemann.model", self.model, self.MODELS)
+        if self.limiter is not None:
+            _non_negative("riemann.limiter", self.limiter)
+
+    def check_scene(self, viscosity: str, diffusion: str, integrator: str,
+                    force_precision: str, tensile_correction: bool) -> None:
+        """Refuse the options the solver replaces or cannot run with (the core's check), given
+        the model names the scene resolves to."""
+        if viscosity == "artificial":
+            raise SceneError(
+                "viscosity: the Riemann solver's limiter replaces the artificial viscosity "
+                "(Zhang et al. 2017); with riemann use viscosity 'laminar' or 'laminar_sps'")
+        if diffusion != "none":
+            raise SceneError(
+                "diffusion: the Riemann solver's continuity diffuses density itself; with "
+                "riemann use diffusion 'none'")
+        if integrator == "verlet":
+            raise SceneError(
+                "integrator: the Verlet scheme's leapfrog amplifies the Riemann solver's density "
+                "dissipation; with riemann use the symplectic integrator")
+        if force_precision != "f64":
+            raise SceneError("force_precision: the Riemann solver's force loop is f64 only; "
+                             "use f64")
+        if tensile_correction:
+            raise SceneError("tensile_correction: is a correction of the classic pressure "
+                             "term; the Riemann solver's force loop has none")
+
+
+@dataclass(frozen=True, kw_only=True)
 class Dbc(Option):
     """Dynamic boundary condition (Crespo et al. 2007): wall particles integrate continuity
     from their fluid neighbours, their density floored at rho0."""
@@ -466,6 +523,7 @@ OPTION_CLASSES: dict[str, tuple[type[Option], ...]] = {
     "boundary": BOUNDARIES,
     "shifting": (Shifting,),
     "tensile_correction": (TensileCorrection,),
+    "riemann": (RiemannSolver,),
 }
 """The builder fields that hold an option, and the classes each takes."""
 

@@ -117,6 +117,9 @@ class SceneBuilder:
         tensile_correction: Monaghan's (2000) tensile correction, a
             :class:`~watersim.numerics.TensileCorrection` (or ``"monaghan"``), with
             ``kernel = "cubic_spline"`` only; ``None``: none.
+        riemann: Riemann-solver SPH with the low-dissipation limiter, a
+            :class:`~watersim.numerics.RiemannSolver` (or ``"acoustic"``), with laminar
+            viscosity and no density diffusion; ``None``: the classic formulation.
         rho0: reference density [kg/m^3].
         gravity: gravitational acceleration [m/s^2], acting along -z.
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
@@ -137,8 +140,9 @@ class SceneBuilder:
     """Fields that only mean something in 3D (must stay ``None`` in 2D)."""
     CORE_KEYS: ClassVar[tuple[str, ...]] = (
         "kernel", "coefh", "coefsound", "gamma", "cfl", "viscosity", "diffusion", "integrator",
-        "boundary", "force_precision", "shifting", "tensile_correction", "rho0", "gravity", "h_swl",
-        "boundary_layers", "density_band", "lost_fraction_limit", "energy_growth_limit",
+        "boundary", "force_precision", "shifting", "tensile_correction", "riemann", "rho0",
+        "gravity", "h_swl", "boundary_layers", "density_band", "lost_fraction_limit",
+        "energy_growth_limit",
     )
     """The fields sent to the core under their own name when set (None: not sent)."""
 
@@ -156,6 +160,7 @@ class SceneBuilder:
     force_precision: str | None = None
     shifting: nm.Shifting | float | None = None
     tensile_correction: nm.TensileCorrection | str | None = None
+    riemann: nm.RiemannSolver | str | None = None
     rho0: float | None = None
     gravity: float | None = None
     h_swl: float | None = None
@@ -225,6 +230,14 @@ class SceneBuilder:
             self.shifting.check_dim(self.dim)
         if isinstance(self.tensile_correction, nm.TensileCorrection):
             self.tensile_correction.check_kernel(str(self.core_value("kernel")))
+        if isinstance(self.riemann, nm.RiemannSolver):
+            def model(name: str, key: str = "model") -> str:
+                value = getattr(self, name)
+                return str(nm.core_default(f"{name}.{key}") if value is None else value.TAG)
+            self.riemann.check_scene(model("viscosity"), model("diffusion"),
+                                     model("integrator", "scheme"),
+                                     str(self.core_value("force_precision")),
+                                     self.tensile_correction is not None)
 
     def _validate_monitors(self) -> None:
         """The stability monitor thresholds that are set (ranges: docs/stability.md)."""

@@ -96,6 +96,8 @@ fn results_do_not_depend_on_the_thread_count() {
         r#", "boundary": {"model": "adami"}"#,
         r#", "force_precision": "f32""#,
         r#", "kernel": "wendland_c4""#,
+        r#", "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}"#,
+        r#", "riemann": {}, "viscosity": {"model": "laminar_sps"}, "diffusion": {"model": "none"}"#,
     ] {
         let (p1, i1) = run_tank(1, extra);
         let (p2, i2) = run_tank(2, extra);
@@ -193,6 +195,7 @@ fn still_tank_stays_still_for_half_a_second() {
         r#", "integrator": {"scheme": "symplectic"}"#,
         r#", "integrator": {"scheme": "verlet"}"#,
         r#", "integrator": {"scheme": "verlet"}, "boundary": {"model": "adami"}"#,
+        r#", "integrator": {"scheme": "symplectic"}, "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}"#,
     ];
     for integrator in runs {
         let mut sim = sph_core::build(tank_at(0.03, integrator)).expect("build");
@@ -206,4 +209,86 @@ fn still_tank_stays_still_for_half_a_second() {
         let scale = (9.81f64 * 0.3).sqrt();
         assert!(vmax < 0.02 * scale, "{integrator}: max speed {vmax} m/s");
     }
+}
+
+const RIEMANN: &str = r#", "riemann": {"limiter": LIMITER}, "viscosity": {"model": "laminar", "nu": 1e-4}, "diffusion": {"model": "none"}"#;
+
+/// The Riemann solver (`physics/riemann.rs`) at uniform density, without its limiter, is the
+/// classic loop: `U* - U_a = (U_b - U_a) / 2` and `P* = (P_a + P_b) / 2` there. With the limiter
+/// it adds a repulsion to approaching pairs only.
+#[test]
+fn riemann_without_dissipation_is_the_classic_loop_at_uniform_density() {
+    let classic = tank(r#", "gravity": 0.0, "h_swl": 0.3, "viscosity": {"model": "laminar", "nu": 1e-4}, "diffusion": {"model": "none"}"#);
+    let run = |scene: Scene| {
+        let mut s = Solver::<Dim2, WendlandC2>::new(scene).expect("solver");
+        let fs = s.particles().fluid_start();
+        let rho0 = s.constants().rho0;
+        let p = s.particles_mut();
+        p.rho.iter_mut().for_each(|r| *r = rho0 * 1.001);
+        // a converging and shearing velocity field
+        for i in fs..p.len() {
+            let (x, z) = (p.pos[i].x, p.pos[i].y);
+            p.vel[i] = sph_core::math::Vector::from_slice(&[-(x - 0.3) + 0.5 * z, 0.2 * (z - 0.15)]);
+        }
+        s.compute_forces();
+        let p = s.particles();
+        let mut by_pos: Vec<_> = (fs..p.len()).map(|i| (p.pos[i].x, p.pos[i].y, p.acc[i - fs].x, p.acc[i - fs].y, p.drho[i])).collect();
+        by_pos.sort_by(|a, b| (a.0, a.1).partial_cmp(&(b.0, b.1)).expect("finite"));
+        by_pos
+    };
+    let c = run(classic);
+    let r0 = run(tank(&(r#", "gravity": 0.0, "h_swl": 0.3"#.to_string() + &RIEMANN.replace("LIMITER", "0"))));
+    let r3 = run(tank(&(r#", "gravity": 0.0, "h_swl": 0.3"#.to_string() + &RIEMANN.replace("LIMITER", "3"))));
+    let scale = c.iter().map(|q| q.2.abs().max(q.3.abs())).fold(0.0, f64::max);
+    let dscale = c.iter().map(|q| q.4.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0 && dscale > 0.0);
+    for (a, b) in c.iter().zip(&r0) {
+        assert!((a.2 - b.2).abs() < 1e-9 * scale && (a.3 - b.3).abs() < 1e-9 * scale, "{a:?} {b:?}");
+        assert!((a.4 - b.4).abs() < 1e-9 * dscale, "{a:?} {b:?}");
+    }
+    // the limiter: continuity unchanged; in momentum a force against the approach of pairs,
+    // which takes kinetic energy out (sum_a v_a . (a_a(eta) - a_a(0)) < 0)
+    let vel = |x: f64, z: f64| (-(x - 0.3) + 0.5 * z, 0.2 * (z - 0.15));
+    let power: f64 = c
+        .iter()
+        .zip(&r3)
+        .zip(&r0)
+        .map(|((_, b), z)| {
+            let (u, w) = vel(b.0, b.1);
+            u * (b.2 - z.2) + w * (b.3 - z.3)
+        })
+        .sum();
+    let moved = r0.iter().zip(&r3).filter(|(a, b)| a.2 != b.2 || a.3 != b.3).count();
+    assert!(power < 0.0 && moved > c.len() / 4, "power {power}, {moved} of {} particles", c.len());
+    assert!(c.iter().zip(&r3).all(|(a, b)| (a.4 - b.4).abs() < 1e-9 * dscale));
+}
+
+/// The pressure jump of the Riemann solver's continuity diffuses density (a bump spreads) but,
+/// its hydrostatic part removed, leaves a hydrostatic column at rest alone.
+#[test]
+fn riemann_continuity_spreads_a_bump_and_leaves_hydrostatics_alone() {
+    let riemann = RIEMANN.replace("LIMITER", "3");
+    let mut s = Solver::<Dim2, WendlandC2>::new(tank(&riemann)).expect("solver");
+    s.compute_forces();
+    let p = s.particles();
+    let interior = |i: usize| {
+        let (x, z) = (p.pos[i].x, p.pos[i].y);
+        x > 0.1 && x < 0.5 && z > 0.1 && z < 0.2
+    };
+    let still = (p.fluid_start()..p.len()).filter(|&i| interior(i)).map(|i| p.drho[i].abs()).fold(0.0, f64::max);
+
+    let mut b = Solver::<Dim2, WendlandC2>::new(tank(&(r#", "gravity": 0.0, "h_swl": 0.3"#.to_string() + &riemann))).expect("solver");
+    let fs = b.particles().fluid_start();
+    let rho0 = b.constants().rho0;
+    b.particles_mut().rho.iter_mut().for_each(|r| *r = rho0);
+    let a = nearest::<Dim2>(&b.particles().pos, fs, 0.3, 0.15);
+    b.particles_mut().rho[a] = rho0 * 1.01;
+    let pa = b.particles().pos[a];
+    b.compute_forces();
+    let p = b.particles();
+    let a2 = (fs..p.len()).find(|&i| p.pos[i] == pa).expect("bumped particle");
+    assert!(p.drho[a2] < 0.0, "the bump must decay, drho = {}", p.drho[a2]);
+    let support = b.constants().support;
+    assert!((fs..p.len()).filter(|&i| i != a2 && (p.pos[i] - pa).length() < support).all(|i| p.drho[i] > 0.0));
+    assert!(still < 1e-3 * p.drho[a2].abs(), "hydrostatic column: {still} against the bump's {}", p.drho[a2]);
 }

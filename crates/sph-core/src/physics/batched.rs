@@ -20,7 +20,8 @@
 use super::eos::{pressure, seventh_power, sound_speed, TaitPair};
 use super::forces::{hydrostatic_free_difference, Fields, StepLimits};
 use super::tensile::{self, TensilePair};
-use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
+use super::riemann::{self, OwnState};
+use super::{Constants, DIFF_FOURTAKAS, DIFF_NONE, DIFF_RIEMANN, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, StencilRows, GROUPS, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
@@ -161,7 +162,7 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
         }
         if !T7 {
             s.pb[k] = F::of(pressure(c, rhob));
-            if VISC == VISC_ARTIFICIAL {
+            if VISC == VISC_ARTIFICIAL || DIFF == DIFF_RIEMANN {
                 s.cb[k] = F::of(sound_speed(c, rhob));
             }
         }
@@ -186,6 +187,7 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     let (alpha, nu) = c.viscous_coefficients(!fluid);
     let (alpha, lam_coef, rho0) = (F::of(alpha), F::of(4.0 * nu), F::of(c.rho0));
     let tens = TensilePair::<F>::new(&c.tensile);
+    let (riemann_eta, rho0_g) = (F::of(c.riemann_limiter), F::of(c.rho0_g));
     let three = D::DIM == 3;
     for k in 0..n_pad {
         let (rx, ry, rz, r2) = if F::SINGLE {
@@ -210,6 +212,29 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
         };
         let dist = r2.sqrt();
         let r2e = r2 + eta2;
+        if DIFF == DIFF_RIEMANN {
+            // the Riemann solver's pair (`riemann.rs`), with laminar viscosity (the scene's
+            // check leaves no other model with it)
+            let (vx, vy) = (own.vel[0] - s.vb[0][k], own.vel[1] - s.vb[1][k]);
+            let vz = if three { own.vel[2] - s.vb[2][k] } else { zero };
+            let vr = vx * rx + vy * ry + vz * rz;
+            let z_ab = if three { rz } else { ry };
+            let a = OwnState { rho: own.rho, p: own.p, z: own.rho * own.sound_speed };
+            let t = riemann::pair_terms(riemann_eta, rho0_g, a, rhob, pb, cb, vr, dist, r2e, z_ab, fluid);
+            let fk = if K::NEEDS_INV_R {
+                kernel.grad_factor_inv_r_in(dist, t.inv_dist)
+            } else {
+                kernel.grad_factor_in(dist)
+            } * mask;
+            let (gx, gy, gz) = (rx * fk, ry * fk, rz * fk);
+            s.out_drho[k] = t.drho_over_f * fk;
+            s.out_visc[k] = (h * vr * t.inv_r2e).abs();
+            let lam = lam_coef * (rx * gx + ry * gy + rz * gz) * t.inv_r2e * t.inv_sum_rho;
+            s.out_acc[0][k] = -gx * t.p_term + vx * lam;
+            s.out_acc[1][k] = -gy * t.p_term + vy * lam;
+            s.out_acc[2][k] = -gz * t.p_term + vz * lam;
+            continue;
+        }
         let sum_rho = own.rho + rhob;
         let rr = if K::NEEDS_INV_R { dist } else { one };
         let inv_all = one / (rr * r2e * rhob * sum_rho);
@@ -546,6 +571,15 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
                 (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
                 (true, false) => forces_for_gamma::<f32, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
             }
+        };
+    }
+    // The Riemann solver: f64 pair terms and no tensile correction (the scene's check refuses
+    // both), so it compiles two loops per kernel, not eight.
+    if const { DIFF == DIFF_RIEMANN } {
+        return if seventh_power(c) {
+            forces_for_gamma::<f64, D, K, VISC, DIFF, true, false>(c, kernel, grid, f, acc, drho, avx2)
+        } else {
+            forces_for_gamma::<f64, D, K, VISC, DIFF, false, false>(c, kernel, grid, f, acc, drho, avx2)
         };
     }
     // The tensile correction (`tensile.rs`), the kernel's constant first: a kernel without the

@@ -8,12 +8,13 @@ use rayon::prelude::*;
 
 use super::eos::{pressure, sound_speed};
 use super::tensile::{self, TensilePair};
-use super::{Constants, NEIGHBOUR_TASK, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
+use super::{Constants, NEIGHBOUR_TASK, DIFF_FOURTAKAS, DIFF_MOLTENI, DIFF_NONE, DIFF_RIEMANN, VISC_ARTIFICIAL, VISC_LAMINAR_SPS};
 use crate::kernel::Kernel;
 use crate::math::{Dim, PairFloat, Real, Vector};
 use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
 use crate::particles::KIND_EXCLUDED;
-use crate::scene::{Diffusion, Viscosity};
+use crate::scene::{Diffusion, RiemannSolver, Viscosity};
+use super::riemann::{self, OwnState};
 
 /// Calls `f(b, r_ab, r_ab^2, |r_ab|)` for every particle `b != a` of `group` inside the kernel
 /// support of the point `pa`, in the grid's fixed order.
@@ -93,12 +94,25 @@ impl StepLimits {
 pub type FluidForceLoop<D, K> =
     fn(&Constants, &K, &CellGrid<D>, Fields<'_, D>, &mut [<D as Dim>::V], &mut [Real]) -> StepLimits;
 
-/// The fluid force loop of a scene's viscosity model and density diffusion, chosen once when the
-/// solver is built: the only place where the two become compile-time constants of the loop
+/// The fluid force loop of a scene's viscosity model and density diffusion, or of its Riemann
+/// solver (`riemann.rs`) with its viscosity model, chosen once when the solver is built: the only place where the two become compile-time constants of the loop
 /// (terms a scene leaves off cost nothing in it). The rest of the solver is compiled once per
 /// dimension and kernel, not once per model pair.
-pub fn fluid_force_loop<D: Dim, K: Kernel>(viscosity: &Viscosity, diffusion: &Diffusion) -> FluidForceLoop<D, K> {
+pub fn fluid_force_loop<D: Dim, K: Kernel>(
+    viscosity: &Viscosity,
+    diffusion: &Diffusion,
+    riemann: Option<&RiemannSolver>,
+) -> FluidForceLoop<D, K> {
     use super::VISC_LAMINAR;
+    if riemann.is_some() {
+        // the scene's check refuses the artificial viscosity and every density diffusion
+        // with the Riemann solver (`RiemannSolver::validate`)
+        return match viscosity {
+            Viscosity::LaminarSps { .. } => fluid_forces::<D, K, VISC_LAMINAR_SPS, DIFF_RIEMANN>,
+            Viscosity::Laminar { .. } => fluid_forces::<D, K, VISC_LAMINAR, DIFF_RIEMANN>,
+            Viscosity::Artificial { .. } => unreachable!("a validated scene has no artificial viscosity with riemann"),
+        };
+    }
     macro_rules! by_diffusion {
         ($v:expr) => {
             match diffusion {
@@ -152,6 +166,8 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// as DualSPHysics' DDT2 does).
 /// With Monaghan's (2000) tensile correction (`TENS`: [`fluid_forces`] sets it where the scene
 /// has it) the pressure term gains `(R_a + R_b) f_ab^4` (`tensile.rs`).
+/// With `DIFF = DIFF_RIEMANN` each pair's pressure and continuity terms are the Riemann
+/// solver's (`riemann.rs`) instead, and the viscous terms are added as here.
 pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const TENS: bool>(
     c: &Constants,
     kernel: &K,
@@ -181,6 +197,7 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
             let tens_a = if TENS { tens.stress(pa_p, pa_rho2) } else { 0.0 };
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
+            let own = OwnState { rho: rhoa, p: pa_p, z: rhoa * ca };
             let mut sum_acc = D::V::ZERO;
             let mut sum_drho = 0.0;
             let mut sum_diff = 0.0;
@@ -190,6 +207,25 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
                 let (alpha, nu) = c.viscous_coefficients(!is_fluid);
                 for_each_pair(grid, support2, group, f.pos, pa, |b, r, r2, dist| {
                     let rhob = f.rho[b];
+                    if DIFF == DIFF_RIEMANN {
+                        // the Riemann solver's pair (`riemann.rs`): its P* and its whole
+                        // continuity term, then the viscous terms as below
+                        let vab = va - f.vel[b];
+                        let vr = vab.dot(r);
+                        let (pb, cb) = (pressure(c, rhob), sound_speed(c, rhob));
+                        let t = riemann::pair_terms(c.riemann_limiter, c.rho0_g, own, rhob, pb, cb, vr, dist, r2 + c.eta2, r.vertical(), is_fluid);
+                        let fk = if K::NEEDS_INV_R { kernel.grad_factor_inv_r(dist, t.inv_dist) } else { kernel.grad_factor(dist) };
+                        let gw = r * fk;
+                        max_visc = max_visc.max((c.h * vr * t.inv_r2e).abs());
+                        sum_drho += t.drho_over_f * fk;
+                        sum_acc -= gw * t.p_term;
+                        sum_acc += vab * (4.0 * nu * r.dot(gw) * t.inv_r2e * t.inv_sum_rho);
+                        if VISC == VISC_LAMINAR_SPS && is_fluid {
+                            let tb = &f.tau[b - f.fluid_start];
+                            sum_acc += D::sym_dot(&tau_a, gw) + D::sym_dot(tb, gw);
+                        }
+                        return;
+                    }
                     // One division gives the pair's four reciprocals: 1/(r^2 + eta^2),
                     // 1/(rho_a + rho_b), 1/rho_b and (for kernels that need it) 1/r. Divisions
                     // and square roots share one slow unit and bounded this loop.
@@ -248,7 +284,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
                     }
                 });
             }
-            // every particle has the same mass: it is factored out of the sums
+            // every particle has the same mass: it is factored out of the sums (with the Riemann
+            // solver sum_drho is its whole continuity term and delta_h_c0 is 0)
             let a_total = sum_acc * c.mass + g;
             *acc_a = a_total;
             *drho_a = c.mass * (sum_drho + c.delta_h_c0 * sum_diff);

@@ -6,6 +6,7 @@ pub mod batched;
 pub mod delta_plus;
 pub mod eos;
 pub mod forces;
+pub mod riemann;
 pub mod tensile;
 
 use crate::math::Real;
@@ -27,6 +28,9 @@ pub const VISC_LAMINAR_SPS: u8 = 2;
 pub const DIFF_NONE: u8 = 0;
 pub const DIFF_MOLTENI: u8 = 1;
 pub const DIFF_FOURTAKAS: u8 = 2;
+/// The Riemann solver's formulation (`riemann.rs`) in the batched loop: its continuity carries
+/// the density dissipation and its `P*` replaces the pressure term (no diffusion term besides).
+pub const DIFF_RIEMANN: u8 = 3;
 
 /// Constants of a run, derived once from the scene.
 #[derive(Clone, Copy, Debug)]
@@ -69,6 +73,8 @@ pub struct Constants {
     pub pair_f32: bool,
     /// Monaghan's (2000) tensile correction (`on` false without it).
     pub tensile: tensile::TensileConstants,
+    /// `eta` of the Riemann solver's low-dissipation limiter (`riemann.rs`; 0 without the solver).
+    pub riemann_limiter: Real,
 }
 
 impl Constants {
@@ -130,6 +136,7 @@ impl Constants {
             density_band: scene.density_band,
             pair_f32: scene.force_precision == ForcePrecision::F32,
             tensile: tensile::TensileConstants::new(scene),
+            riemann_limiter: scene.riemann.map_or(0.0, |r| r.limiter),
         }
     }
 }

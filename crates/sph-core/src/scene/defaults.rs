@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::numerics::{Boundary, Diffusion, ForcePrecision, Integrator, ShiftingModel, Slip, Viscosity};
 use crate::kernel::KernelKind;
 use crate::probes::{RunupMethod, SurfaceMethod};
+use crate::physics::riemann::RiemannModel;
 use crate::physics::tensile::TensileModel;
 use crate::math::Real;
 
@@ -36,6 +37,7 @@ pub struct Defaults {
     pub force_precision: ForcePrecision,
     pub shifting: ShiftingDefaults,
     pub tensile_correction: TensileDefaults,
+    pub riemann: RiemannDefaults,
     pub damping: DampingDefaults,
     pub gauges: GaugeDefaults,
     /// Stability monitors (docs/stability.md): loose enough that a healthy run never trips
@@ -110,6 +112,15 @@ pub struct TensileDefaults {
     pub epsilon_neg: Real,
 }
 
+/// The Riemann solver's parameters (off by default: the classic formulation).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RiemannDefaults {
+    /// The solver (`acoustic`).
+    pub model: RiemannModel,
+    /// `eta` of the low-dissipation limiter: Zhang, Hu & Adams' (2017) 3.
+    pub limiter: Real,
+}
+
 /// How free-surface and run-up gauges find the water when the scene does not say.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GaugeDefaults {
@@ -143,6 +154,7 @@ impl Default for Defaults {
             force_precision: ForcePrecision::F64,
             shifting: ShiftingDefaults { model: ShiftingModel::Lind, coefficient: 2.0 },
             tensile_correction: TensileDefaults { model: TensileModel::Monaghan, epsilon_pos: 0.01, epsilon_neg: 0.2 },
+            riemann: RiemannDefaults { model: RiemannModel::Acoustic, limiter: 3.0 },
             damping: DampingDefaults { strength: 10.0 },
             gauges: GaugeDefaults { elevation_method: SurfaceMethod::Kernel, runup_method: RunupMethod::Kernel },
             density_band: 0.5,
@@ -195,6 +207,8 @@ pub(crate) mod serde_default {
         tensile_model: TensileModel = tensile_correction.model;
         tensile_epsilon_pos: Real = tensile_correction.epsilon_pos;
         tensile_epsilon_neg: Real = tensile_correction.epsilon_neg;
+        riemann_model: RiemannModel = riemann.model;
+        riemann_limiter: Real = riemann.limiter;
         damping_strength: Real = damping.strength;
         elevation_method: SurfaceMethod = gauges.elevation_method;
         runup_method: RunupMethod = gauges.runup_method;

@@ -23,6 +23,7 @@ use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
 use crate::motion::Paddle;
+pub use crate::physics::riemann::{RiemannModel, RiemannSolver};
 pub use crate::physics::tensile::{TensileCorrection, TensileModel};
 use crate::probes::GaugeSpec;
 
@@ -76,6 +77,10 @@ pub struct Scene {
     /// resolve to the same JSON.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tensile_correction: Option<TensileCorrection>,
+    /// Riemann-solver SPH with the low-dissipation limiter (`physics/riemann.rs`); the classic
+    /// formulation without it. Left out of the scene's JSON when absent, as `tensile_correction`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub riemann: Option<RiemannSolver>,
     /// Inner faces of the tank (floor and side walls; the top is open).
     pub tank: BoxSpec,
     #[serde(default)]
@@ -264,6 +269,14 @@ mod tests {
             (dambreak_json(r#", "shifting": {"model": "delta_plus", "surface_threshold": 1.5}"#), "shifting.surface_threshold"),
             (dambreak_json(r#", "shifting": {"model": "fick"}"#), "shifting"),
             (dambreak_json(r#", "boundary": {"model": "mirror"}"#), "boundary"),
+            // the Riemann solver replaces the artificial viscosity and the density diffusion
+            (dambreak_json(r#", "riemann": {}"#), "viscosity"),
+            (dambreak_json(r#", "riemann": {}, "viscosity": {"model": "laminar"}"#), "diffusion"),
+            (dambreak_json(r#", "riemann": {"limiter": -1}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}"#), "riemann.limiter"),
+            (dambreak_json(r#", "riemann": {"model": "hllc"}"#), "riemann"),
+            (dambreak_json(r#", "riemann": {"eta": 3}"#), "riemann"),
+            (dambreak_json(r#", "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}, "force_precision": "f32""#), "force_precision"),
+            (dambreak_json(r#", "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}, "integrator": {"scheme": "verlet"}"#), "integrator"),
             (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
             // the wall shell of a huge support or of too many layers: not dp's fault
             (dambreak_json(r#", "coefh": 1e6"#), "coefh"),

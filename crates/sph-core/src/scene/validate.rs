@@ -295,6 +295,9 @@ impl Scene {
         if let Some(t) = &self.tensile_correction {
             t.validate(self.kernel)?;
         }
+        if let Some(r) = &self.riemann {
+            r.validate(self)?;
+        }
         if let Some(0) = self.boundary_layers {
             return Err(Error::invalid("boundary_layers", "must be >= 1"));
         }

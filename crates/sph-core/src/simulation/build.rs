@@ -96,7 +96,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         let blocks = n.div_ceil(PERMUTE_BLOCK);
         let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
         let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
-        let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion);
+        let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion, scene.riemann.as_ref());
         let mut solver = Self {
             scene,
             c,

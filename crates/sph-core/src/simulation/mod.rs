@@ -67,6 +67,8 @@ pub struct Params {
     pub shifting_model: Option<&'static str>,
     /// Monaghan's (2000) tensile correction: "monaghan", or none without it.
     pub tensile_correction: Option<&'static str>,
+    /// The Riemann solver: "acoustic", or none for the classic formulation.
+    pub riemann: Option<&'static str>,
     /// Arithmetic of the force loop's pair terms: "f64" or "f32".
     pub force_precision: &'static str,
     /// Smallest time step allowed before the run is declared unstable [s].
@@ -510,6 +512,7 @@ impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
             shifting: s.shifting.map(|sh| sh.coefficient),
             shifting_model: s.shifting.map(|sh| sh.model.name()),
             tensile_correction: s.tensile_correction.map(|t| t.model.name()),
+            riemann: s.riemann.map(|r| r.model.name()),
             dt_floor: self.dt_floor,
         }
     }
