@@ -316,6 +316,36 @@ def test_riemann_solver_round_trips_and_refuses_what_it_replaces() -> None:
             _core.Simulation(json.dumps(tank | {"riemann": {}} | extra))
 
 
+def test_kernel_correction_round_trips_and_refuses_what_it_cannot_run_with() -> None:
+    """The kernel gradient correction (``kernel_correction``, ``physics/kgc.rs``): off unless
+    set; through the core, ``--set`` and a scene file; bad values and the options it is not
+    combined with refused naming the field, in Python and in the core."""
+    assert nm.core_default("kernel_correction.min_eigenvalue") == 0.75
+    b = ws.Tank(kernel_correction=nm.KernelCorrection(), until=0.01)
+    assert b.to_scene()["kernel_correction"] == {}
+    assert b.resolved_scene()["kernel_correction"] == {"min_eigenvalue": 0.75}
+    assert b.build().params()["kernel_correction"] == 0.75
+    assert ws.Tank(until=0.01).build().params()["kernel_correction"] is None
+    by_set = cli.builder_from_args("dambreak2d", ["kernel_correction.min_eigenvalue=0.8"])
+    assert by_set.kernel_correction == nm.KernelCorrection(min_eigenvalue=0.8)
+    loaded = sf.loads('type = "tank"\nkernel_correction = { min_eigenvalue = 0.9 }\n',
+                      source="f.toml").builder
+    assert loaded.kernel_correction == nm.KernelCorrection(min_eigenvalue=0.9)
+    assert sf.loads(sf.dumps(loaded), source="g.toml").builder == loaded
+    for bad in (0.0, 1.5):
+        with pytest.raises(ws.SceneError, match=r"^kernel_correction\.min_eigenvalue: "):
+            nm.KernelCorrection(min_eigenvalue=bad)
+    with pytest.raises(ws.SceneError, match=r"^force_precision: is not combined"):
+        ws.Tank(kernel_correction=nm.KernelCorrection(), force_precision="f32")
+    tank = ws.Tank(until=0.01).to_scene()
+    for extra, key in (({"kernel_correction": {"min_eigenvalue": 2.0}},
+                        "kernel_correction.min_eigenvalue"),
+                       ({"kernel_correction": {"lambda": 0.5}}, "kernel_correction"),
+                       ({"kernel_correction": {}, "force_precision": "f32"}, "force_precision")):
+        with pytest.raises(ws.SceneError, match=key):
+            _core.Simulation(json.dumps(tank | extra))
+
+
 def test_scene_files_take_option_tables_and_set_their_parameters() -> None:
     scene = sf.load(EXAMPLES / "dambreak2d.toml", ["viscosity.alpha=0.03"])
     assert scene.builder.viscosity == nm.Artificial(alpha=0.03)

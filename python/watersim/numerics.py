@@ -7,7 +7,7 @@ core's default applies (:func:`core_default`, read from ``watersim._core.scene_d
 ``Defaults`` in ``crates/sph-core/src/scene/defaults.rs``).
 
 A builder's option field (``viscosity``, ``diffusion``, ``integrator``, ``boundary``,
-``shifting``, ``tensile_correction``, ``riemann``) takes the option object
+``shifting``, ``tensile_correction``, ``riemann``, ``kernel_correction``) takes the option object
 (``Laminar(nu=2e-6)``), its model's name (``"laminar"``: that model with the core's
 parameters) or its scene-file table (``{"type": "laminar", "nu": 2e-6}``); a shifting
 coefficient alone may be given as a number,
@@ -60,6 +60,7 @@ __all__ = [
     "Artificial",
     "Dbc",
     "Fourtakas",
+    "KernelCorrection",
     "Laminar",
     "LaminarSps",
     "Mdbc",
@@ -463,6 +464,35 @@ class RiemannSolver(Option):
 
 
 @dataclass(frozen=True, kw_only=True)
+class KernelCorrection(Option):
+    """Kernel gradient correction of the pressure term (Bonet & Lok 1999;
+    ``crates/sph-core/src/physics/kgc.rs``): inside the water each fluid particle's pressure
+    gradient is the corrected gradient of the pressure difference,
+    ``-(1/rho_a) sum_b V_b (P_b - P_a) B_a^-1 grad W``, exact for a linear pressure on any
+    particle set; particles whose correction matrix is ill-conditioned (at the free surface)
+    keep the plain symmetric term. It runs the pair-at-a-time force loop and one more neighbour
+    pass per force evaluation. Off by default; refused with ``force_precision`` f32, the tensile
+    correction and the Riemann solver.
+
+    Attributes:
+        min_eigenvalue: smallest eigenvalue of the correction matrix ``B_a`` (1 inside the
+            water, about 0.5 on a flat surface) from which a particle is corrected [-], in
+            (0, 1] (the core's default: 0.75, Marrone et al.'s (2010) free-surface band).
+    """
+
+    FIELD: ClassVar[str] = "kernel_correction"
+    POSITIVE: ClassVar[tuple[str, ...]] = ("min_eigenvalue",)
+
+    min_eigenvalue: float | None = None
+
+    def check(self) -> None:
+        super().check()
+        if self.min_eigenvalue is not None and self.min_eigenvalue > 1.0:
+            raise SceneError(f"kernel_correction.min_eigenvalue: must be at most 1 (the "
+                             f"eigenvalue inside the water), got {self.min_eigenvalue!r}")
+
+
+@dataclass(frozen=True, kw_only=True)
 class Dbc(Option):
     """Dynamic boundary condition (Crespo et al. 2007): wall particles integrate continuity
     from their fluid neighbours, their density floored at rho0."""
@@ -524,6 +554,7 @@ OPTION_CLASSES: dict[str, tuple[type[Option], ...]] = {
     "shifting": (Shifting,),
     "tensile_correction": (TensileCorrection,),
     "riemann": (RiemannSolver,),
+    "kernel_correction": (KernelCorrection,),
 }
 """The builder fields that hold an option, and the classes each takes."""
 

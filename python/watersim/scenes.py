@@ -120,6 +120,8 @@ class SceneBuilder:
         riemann: Riemann-solver SPH with the low-dissipation limiter, a
             :class:`~watersim.numerics.RiemannSolver` (or ``"acoustic"``), with laminar
             viscosity and no density diffusion; ``None``: the classic formulation.
+        kernel_correction: kernel gradient correction of the pressure term, a
+            :class:`~watersim.numerics.KernelCorrection` (or ``{}``); ``None``: none.
         rho0: reference density [kg/m^3].
         gravity: gravitational acceleration [m/s^2], acting along -z.
         h_swl: depth for the speed of sound [m]; ``None``: the highest fluid top above the floor.
@@ -140,7 +142,8 @@ class SceneBuilder:
     """Fields that only mean something in 3D (must stay ``None`` in 2D)."""
     CORE_KEYS: ClassVar[tuple[str, ...]] = (
         "kernel", "coefh", "coefsound", "gamma", "cfl", "viscosity", "diffusion", "integrator",
-        "boundary", "force_precision", "shifting", "tensile_correction", "riemann", "rho0",
+        "boundary", "force_precision", "shifting", "tensile_correction", "riemann",
+        "kernel_correction", "rho0",
         "gravity", "h_swl", "boundary_layers", "density_band", "lost_fraction_limit",
         "energy_growth_limit",
     )
@@ -161,6 +164,7 @@ class SceneBuilder:
     shifting: nm.Shifting | float | None = None
     tensile_correction: nm.TensileCorrection | str | None = None
     riemann: nm.RiemannSolver | str | None = None
+    kernel_correction: nm.KernelCorrection | None = None
     rho0: float | None = None
     gravity: float | None = None
     h_swl: float | None = None
@@ -238,6 +242,14 @@ class SceneBuilder:
                                      model("integrator", "scheme"),
                                      str(self.core_value("force_precision")),
                                      self.tensile_correction is not None)
+        if isinstance(self.kernel_correction, nm.KernelCorrection):
+            for name, clash in (("force_precision", self.force_precision == "f32"),
+                                ("tensile_correction", self.tensile_correction is not None),
+                                ("riemann", self.riemann is not None)):
+                if clash:
+                    raise SceneError(f"{name}: is not combined with the kernel correction "
+                                     "(kernel_correction runs the f64 pair-at-a-time loop "
+                                     "without either)")
 
     def _validate_monitors(self) -> None:
         """The stability monitor thresholds that are set (ranges: docs/stability.md)."""

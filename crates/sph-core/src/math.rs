@@ -183,6 +183,10 @@ pub trait Dim: Copy + Send + Sync + Debug + Default + 'static {
     /// `adj(s) . v`: `det(s) s^-1 . v` without the division (the direction of `s^-1 . v`
     /// when `s` is positive definite).
     fn sym_adjugate_dot(s: &Self::Sym, v: Self::V) -> Self::V;
+    /// `s^-1` (None where `det(s)` is 0 or not finite).
+    fn sym_inverse(s: &Self::Sym) -> Option<Self::Sym>;
+    /// The identity tensor.
+    fn sym_identity() -> Self::Sym;
 
     /// The nearest point of the surface of the axis-aligned box `[min, max]` to `p`, by parry's
     /// point projection.
@@ -350,6 +354,13 @@ impl Dim for Dim2 {
     fn sym_adjugate_dot(s: &Self::Sym, v: DVec2) -> DVec2 {
         DVec2::new(s[1] * v.x - s[2] * v.y, s[0] * v.y - s[2] * v.x)
     }
+    fn sym_inverse(s: &Self::Sym) -> Option<Self::Sym> {
+        let det = s[0] * s[1] - s[2] * s[2];
+        (det != 0.0 && det.is_finite()).then(|| [s[1] / det, s[0] / det, -s[2] / det])
+    }
+    fn sym_identity() -> Self::Sym {
+        [1.0, 1.0, 0.0]
+    }
     shape_queries!(parry2d_f64);
 }
 
@@ -444,6 +455,16 @@ impl Dim for Dim3 {
         let (a01, a02, a12) = (xz * yz - xy * zz, xy * yz - xz * yy, xy * xz - xx * yz);
         DVec3::new(a00 * v.x + a01 * v.y + a02 * v.z, a01 * v.x + a11 * v.y + a12 * v.z, a02 * v.x + a12 * v.y + a22 * v.z)
     }
+    fn sym_inverse(s: &Self::Sym) -> Option<Self::Sym> {
+        let [xx, yy, zz, xy, xz, yz] = *s;
+        let (a00, a11, a22) = (yy * zz - yz * yz, xx * zz - xz * xz, xx * yy - xy * xy);
+        let (a01, a02, a12) = (xz * yz - xy * zz, xy * yz - xz * yy, xy * xz - xx * yz);
+        let det = xx * a00 + xy * a01 + xz * a02;
+        (det != 0.0 && det.is_finite()).then(|| [a00 / det, a11 / det, a22 / det, a01 / det, a02 / det, a12 / det])
+    }
+    fn sym_identity() -> Self::Sym {
+        [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]
+    }
     shape_queries!(parry3d_f64);
 }
 
@@ -467,6 +488,15 @@ mod tests {
         let v3 = DVec3::new(0.3, -1.2, 0.7);
         let back = Dim3::sym_dot(&s3, Dim3::sym_adjugate_dot(&s3, v3)) / 24.0;
         assert!((back - v3).length() < 1e-12, "{back}");
+        // inverses: s (s^-1 v) = v; a singular tensor has none
+        let inv2 = Dim2::sym_inverse(&s2).expect("regular");
+        assert!((Dim2::sym_dot(&s2, Dim2::sym_dot(&inv2, v2)) - v2).length() < 1e-14);
+        let s3b = [2.0, 3.0, 4.0, 0.5, -0.3, 0.2];
+        let inv3 = Dim3::sym_inverse(&s3b).expect("regular");
+        assert!((Dim3::sym_dot(&s3b, Dim3::sym_dot(&inv3, v3)) - v3).length() < 1e-14);
+        assert!(Dim2::sym_inverse(&[1.0, 1.0, 1.0]).is_none() && Dim3::sym_inverse(&[0.0; 6]).is_none());
+        assert_eq!(Dim2::sym_dot(&Dim2::sym_identity(), v2), v2);
+        assert_eq!(Dim3::sym_dot(&Dim3::sym_identity(), v3), v3);
     }
 
     #[test]

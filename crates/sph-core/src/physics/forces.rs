@@ -52,6 +52,9 @@ pub struct Fields<'a, D: Dim> {
     /// SPS stress `tau / rho^2` per fluid particle (indexed from the first fluid particle); empty
     /// unless the SPS closure is on.
     pub tau: &'a [D::Sym],
+    /// Kernel gradient correction `L_a` per fluid particle (indexed from the first fluid
+    /// particle, `kgc.rs`); empty unless the correction is on.
+    pub kgc: &'a [D::Sym],
     /// First fluid particle.
     pub fluid_start: usize,
 }
@@ -102,8 +105,27 @@ pub fn fluid_force_loop<D: Dim, K: Kernel>(
     viscosity: &Viscosity,
     diffusion: &Diffusion,
     riemann: Option<&RiemannSolver>,
+    kernel_correction: bool,
 ) -> FluidForceLoop<D, K> {
     use super::VISC_LAMINAR;
+    if kernel_correction {
+        // the pair-at-a-time loop with the correction (`kgc.rs`); the scene's check refuses it
+        // with the tensile correction and the Riemann solver
+        macro_rules! corrected {
+            ($v:expr) => {
+                match diffusion {
+                    Diffusion::None => fluid_forces_scalar::<D, K, { $v }, DIFF_NONE, false, true>,
+                    Diffusion::Molteni { .. } => fluid_forces_scalar::<D, K, { $v }, DIFF_MOLTENI, false, true>,
+                    Diffusion::Fourtakas { .. } => fluid_forces_scalar::<D, K, { $v }, DIFF_FOURTAKAS, false, true>,
+                }
+            };
+        }
+        return match viscosity {
+            Viscosity::Artificial { .. } => corrected!(VISC_ARTIFICIAL),
+            Viscosity::Laminar { .. } => corrected!(VISC_LAMINAR),
+            Viscosity::LaminarSps { .. } => corrected!(VISC_LAMINAR_SPS),
+        };
+    }
     if riemann.is_some() {
         // the scene's check refuses the artificial viscosity and every density diffusion
         // with the Riemann solver (`RiemannSolver::validate`)
@@ -143,9 +165,9 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
         // the tensile correction (`tensile.rs`), the kernel's constant first: a kernel without
         // the correction compiles no loop with it (the batched loop chooses the same way)
         if const { tensile::corrects(K::KIND) } && c.tensile.on {
-            fluid_forces_scalar::<D, K, VISC, DIFF, true>(c, kernel, grid, f, acc, drho)
+            fluid_forces_scalar::<D, K, VISC, DIFF, true, false>(c, kernel, grid, f, acc, drho)
         } else {
-            fluid_forces_scalar::<D, K, VISC, DIFF, false>(c, kernel, grid, f, acc, drho)
+            fluid_forces_scalar::<D, K, VISC, DIFF, false, false>(c, kernel, grid, f, acc, drho)
         }
     } else {
         super::batched::fluid_forces_batched::<D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho)
@@ -166,9 +188,11 @@ pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
 /// as DualSPHysics' DDT2 does).
 /// With Monaghan's (2000) tensile correction (`TENS`: [`fluid_forces`] sets it where the scene
 /// has it) the pressure term gains `(R_a + R_b) f_ab^4` (`tensile.rs`).
+/// With `KGC` the pressure part `(P_a/rho_a^2 + P_b/rho_b^2) grad_a W_ab` becomes the corrected
+/// gradient of the pressure difference, `(P_b - P_a)/(rho_a rho_b) L_a grad_a W_ab` (`kgc.rs`).
 /// With `DIFF = DIFF_RIEMANN` each pair's pressure and continuity terms are the Riemann
 /// solver's (`riemann.rs`) instead, and the viscous terms are added as here.
-pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const TENS: bool>(
+pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, const TENS: bool, const KGC: bool>(
     c: &Constants,
     kernel: &K,
     grid: &CellGrid<D>,
@@ -198,6 +222,9 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
             let ca = sound_speed(c, rhoa);
             let tau_a = if VISC == VISC_LAMINAR_SPS { f.tau[i] } else { D::Sym::default() };
             let own = OwnState { rho: rhoa, p: pa_p, z: rhoa * ca };
+            // a zero matrix marks a particle that keeps the plain symmetric form (`kgc.rs`)
+            let (l_a, inv_rhoa) = if KGC { (f.kgc[i], 1.0 / rhoa) } else { (D::Sym::default(), 0.0) };
+            let corrected = KGC && D::sym_trace_and_norm2(&l_a).1 > 0.0;
             let mut sum_acc = D::V::ZERO;
             let mut sum_drho = 0.0;
             let mut sum_diff = 0.0;
@@ -251,7 +278,8 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
                     let inv_rhob = rr * r2e * sum_rho * inv_all;
                     let pb = pressure(c, rhob);
                     let pb_rho2 = pb * inv_rhob * inv_rhob;
-                    let mut p_term = pa_rho2 + pb_rho2;
+                    let p_pair = pa_rho2 + pb_rho2;
+                    let mut p_term = p_pair;
                     if TENS {
                         p_term += tens.term(dist, tens_a, tens.stress(pb, pb_rho2));
                     }
@@ -263,7 +291,15 @@ pub fn fluid_forces_scalar<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
                         let cbar_rhobar = (ca + sound_speed(c, rhob)) * inv_sum_rho;
                         p_term += -alpha * cbar_rhobar * (c.h * vr.min(0.0) * inv_r2_eta2);
                     }
-                    sum_acc -= gw * p_term;
+                    if corrected {
+                        // the corrected gradient of the pressure difference,
+                        // (P_b - P_a) / (rho_a rho_b) L_a grad_a W_ab; the other terms (artificial
+                        // viscosity) on the plain gradient
+                        let p_diff = (pb - pa_p) * inv_rhoa * inv_rhob;
+                        sum_acc -= gw * (p_term - p_pair) + D::sym_dot(&l_a, gw) * p_diff;
+                    } else {
+                        sum_acc -= gw * p_term;
+                    }
                     if VISC != VISC_ARTIFICIAL {
                         let lam = 4.0 * nu * r.dot(gw) * inv_r2_eta2 * inv_sum_rho;
                         sum_acc += vab * lam;

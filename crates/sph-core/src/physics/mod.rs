@@ -6,6 +6,7 @@ pub mod batched;
 pub mod delta_plus;
 pub mod eos;
 pub mod forces;
+pub mod kgc;
 pub mod riemann;
 pub mod tensile;
 

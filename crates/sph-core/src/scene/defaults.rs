@@ -38,6 +38,7 @@ pub struct Defaults {
     pub shifting: ShiftingDefaults,
     pub tensile_correction: TensileDefaults,
     pub riemann: RiemannDefaults,
+    pub kernel_correction: KernelCorrectionDefaults,
     pub damping: DampingDefaults,
     pub gauges: GaugeDefaults,
     /// Stability monitors (docs/stability.md): loose enough that a healthy run never trips
@@ -121,6 +122,14 @@ pub struct RiemannDefaults {
     pub limiter: Real,
 }
 
+/// The kernel gradient correction's parameter (off by default).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct KernelCorrectionDefaults {
+    /// Smallest eigenvalue of the correction matrix from which a particle is corrected: the
+    /// free-surface band of Marrone et al. (2010), as the delta-plus shifting's.
+    pub min_eigenvalue: Real,
+}
+
 /// How free-surface and run-up gauges find the water when the scene does not say.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GaugeDefaults {
@@ -155,6 +164,7 @@ impl Default for Defaults {
             shifting: ShiftingDefaults { model: ShiftingModel::Lind, coefficient: 2.0 },
             tensile_correction: TensileDefaults { model: TensileModel::Monaghan, epsilon_pos: 0.01, epsilon_neg: 0.2 },
             riemann: RiemannDefaults { model: RiemannModel::Acoustic, limiter: 3.0 },
+            kernel_correction: KernelCorrectionDefaults { min_eigenvalue: 0.75 },
             damping: DampingDefaults { strength: 10.0 },
             gauges: GaugeDefaults { elevation_method: SurfaceMethod::Kernel, runup_method: RunupMethod::Kernel },
             density_band: 0.5,
@@ -209,6 +219,7 @@ pub(crate) mod serde_default {
         tensile_epsilon_neg: Real = tensile_correction.epsilon_neg;
         riemann_model: RiemannModel = riemann.model;
         riemann_limiter: Real = riemann.limiter;
+        kgc_min_eigenvalue: Real = kernel_correction.min_eigenvalue;
         damping_strength: Real = damping.strength;
         elevation_method: SurfaceMethod = gauges.elevation_method;
         runup_method: RunupMethod = gauges.runup_method;

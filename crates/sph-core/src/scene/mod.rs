@@ -23,6 +23,7 @@ use crate::error::{Error, Result};
 use crate::kernel::KernelKind;
 use crate::math::Real;
 use crate::motion::Paddle;
+pub use crate::physics::kgc::KernelCorrection;
 pub use crate::physics::riemann::{RiemannModel, RiemannSolver};
 pub use crate::physics::tensile::{TensileCorrection, TensileModel};
 use crate::probes::GaugeSpec;
@@ -81,6 +82,10 @@ pub struct Scene {
     /// formulation without it. Left out of the scene's JSON when absent, as `tensile_correction`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub riemann: Option<RiemannSolver>,
+    /// Kernel gradient correction of the pressure term (`physics/kgc.rs`); none by default, and
+    /// left out of the scene's JSON then.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kernel_correction: Option<KernelCorrection>,
     /// Inner faces of the tank (floor and side walls; the top is open).
     pub tank: BoxSpec,
     #[serde(default)]
@@ -277,6 +282,11 @@ mod tests {
             (dambreak_json(r#", "riemann": {"eta": 3}"#), "riemann"),
             (dambreak_json(r#", "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}, "force_precision": "f32""#), "force_precision"),
             (dambreak_json(r#", "riemann": {}, "viscosity": {"model": "laminar"}, "diffusion": {"model": "none"}, "integrator": {"scheme": "verlet"}"#), "integrator"),
+            (dambreak_json(r#", "kernel_correction": {"min_eigenvalue": 0}"#), "kernel_correction.min_eigenvalue"),
+            (dambreak_json(r#", "kernel_correction": {"min_eigenvalue": 1.5}"#), "kernel_correction.min_eigenvalue"),
+            (dambreak_json(r#", "kernel_correction": {"lambda": 0.5}"#), "kernel_correction"),
+            (dambreak_json(r#", "kernel_correction": {}, "force_precision": "f32""#), "force_precision"),
+            (dambreak_json(r#", "kernel_correction": {}, "kernel": "cubic_spline", "tensile_correction": {}"#), "tensile_correction"),
             (dambreak_json(r#", "memory_limit_bytes": 1000"#), "dp"),
             // the wall shell of a huge support or of too many layers: not dp's fault
             (dambreak_json(r#", "coefh": 1e6"#), "coefh"),

@@ -298,6 +298,9 @@ impl Scene {
         if let Some(r) = &self.riemann {
             r.validate(self)?;
         }
+        if let Some(k) = &self.kernel_correction {
+            k.validate(self)?;
+        }
         if let Some(0) = self.boundary_layers {
             return Err(Error::invalid("boundary_layers", "must be >= 1"));
         }

@@ -82,6 +82,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
             }
         };
         let tau = if matches!(scene.viscosity, Viscosity::LaminarSps { .. }) { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
+        let kgc = if scene.kernel_correction.is_some() { vec![D::Sym::default(); n_fluid] } else { Vec::new() };
         let shift = scene.shifting.map(|sh| ShiftState {
             model: sh.model,
             u_max: 0.0,
@@ -96,7 +97,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         let blocks = n.div_ceil(PERMUTE_BLOCK);
         let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
         let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
-        let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion, scene.riemann.as_ref());
+        let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion, scene.riemann.as_ref(), scene.kernel_correction.is_some());
         let mut solver = Self {
             scene,
             c,
@@ -106,6 +107,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
             grid,
             history,
             tau,
+            kgc,
             shift,
             scratch,
             time: 0.0,

@@ -69,6 +69,8 @@ pub struct Params {
     pub tensile_correction: Option<&'static str>,
     /// The Riemann solver: "acoustic", or none for the classic formulation.
     pub riemann: Option<&'static str>,
+    /// The kernel gradient correction's threshold eigenvalue (none without the correction).
+    pub kernel_correction: Option<Real>,
     /// Arithmetic of the force loop's pair terms: "f64" or "f32".
     pub force_precision: &'static str,
     /// Smallest time step allowed before the run is declared unstable [s].
@@ -210,6 +212,8 @@ pub struct Solver<D: Dim, K: Kernel> {
     history: History<D>,
     /// SPS stress per fluid particle; empty without the SPS closure.
     tau: Vec<D::Sym>,
+    /// Kernel gradient correction per fluid particle; empty without the correction.
+    kgc: Vec<D::Sym>,
     shift: Option<ShiftState<D>>,
     scratch: Scratch,
     time: Real,
@@ -381,7 +385,7 @@ fn on_pool<R: Send>(op: impl FnOnce() -> R + Send) -> R {
 
 /// The read-only fields of a force or shifting pass over the particles `p`.
 fn fields_of<'a, D: Dim>(p: &'a Particles<D>, tau: &'a [D::Sym]) -> Fields<'a, D> {
-    Fields { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau, fluid_start: p.fluid_start() }
+    Fields { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau, kgc: &[], fluid_start: p.fluid_start() }
 }
 
 fn flat<V: Vector>(v: &[V]) -> &[Real] {
@@ -513,6 +517,7 @@ impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
             shifting_model: s.shifting.map(|sh| sh.model.name()),
             tensile_correction: s.tensile_correction.map(|t| t.model.name()),
             riemann: s.riemann.map(|r| r.model.name()),
+            kernel_correction: s.kernel_correction.map(|k| k.min_eigenvalue),
             dt_floor: self.dt_floor,
         }
     }

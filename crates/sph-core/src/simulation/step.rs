@@ -15,6 +15,7 @@ use crate::neighbours::{GROUP_FLUID, GROUP_MOVING};
 use crate::phases::{self, Phase};
 use crate::physics::forces::{shifting_fields, sps_stress, Fields, StepLimits};
 use crate::physics::delta_plus::delta_plus_fields;
+use crate::physics::kgc::correction_matrices;
 use crate::scene::{ShiftingModel, Viscosity};
 
 impl<D: Dim, K: Kernel> Solver<D, K> {
@@ -69,9 +70,13 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
             let fields = fields_of(&self.p, &[]);
             sps_stress(&c, &self.kernel, &self.grid, fields, &mut self.tau);
         }
+        if let Some(kgc) = self.scene.kernel_correction {
+            let fields = fields_of(&self.p, &[]);
+            correction_matrices(&c, &self.kernel, &self.grid, fields, kgc.min_eigenvalue, &mut self.kgc);
+        }
         // field by field: `drho` and `acc` are borrowed mutably next to them
         let p = &mut self.p;
-        let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, fluid_start: fs };
+        let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, kgc: &self.kgc, fluid_start: fs };
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
         let (kernel, grid, fluid_loop) = (&self.kernel, &self.grid, self.fluid_loop);
         let mut fluid = || fluid_loop(&c, kernel, grid, fields, &mut p.acc, drho_fluid);

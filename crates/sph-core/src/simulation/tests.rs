@@ -21,7 +21,7 @@ fn check<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(json: &str) {
     let (mut acc_s, mut drho_s) = (vec![D::V::ZERO; n], vec![0.0; n]);
     let (mut acc_b, mut drho_b) = (vec![D::V::ZERO; n], vec![0.0; n]);
     // the loop `fluid_forces` would run for the scene (the batched loop chooses for itself)
-    let scalar = if s.c.tensile.on { fluid_forces_scalar::<D, K, VISC, DIFF, true> } else { fluid_forces_scalar::<D, K, VISC, DIFF, false> };
+    let scalar = if s.c.tensile.on { fluid_forces_scalar::<D, K, VISC, DIFF, true, false> } else { fluid_forces_scalar::<D, K, VISC, DIFF, false, false> };
     let lim_s = scalar(&s.c, &s.kernel, &s.grid, fields, &mut acc_s, &mut drho_s);
     let lim_b = fluid_forces_batched::<D, K, VISC, DIFF>(&s.c, &s.kernel, &s.grid, fields, &mut acc_b, &mut drho_b);
     let acc_scale = acc_s.iter().map(|a| a.length()).fold(0.0, f64::max);
@@ -233,7 +233,7 @@ fn tensile_correction_adds_monaghans_term_to_every_fluid_and_wall_pair() {
         fluid_forces_batched::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS>(&c_on, &s.kernel, &s.grid, fields, &mut acc_on, &mut drho_on);
         fluid_forces_batched::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS>(&c_off, &s.kernel, &s.grid, fields, &mut acc_off, &mut drho_off);
         let (mut acc_s, mut drho_s) = (vec![DVec2::ZERO; n], vec![0.0; n]);
-        fluid_forces_scalar::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS, true>(&s.c, &s.kernel, &s.grid, fields, &mut acc_s, &mut drho_s);
+        fluid_forces_scalar::<Dim2, CubicSpline, VISC_ARTIFICIAL, DIFF_FOURTAKAS, true, false>(&s.c, &s.kernel, &s.grid, fields, &mut acc_s, &mut drho_s);
         assert_eq!(drho_on, drho_off, "the correction is in the momentum equation only");
         // the formula, pair by pair over all particles
         let k = CubicSpline::new(s.c.h, 2);
@@ -323,9 +323,9 @@ fn the_wall_factor_scales_the_viscous_term_of_wall_pairs_only() {
             let (mut acc, mut drho) = (vec![DVec2::ZERO; n], vec![0.0; n]);
             match (laminar, scalar) {
                 (false, false) => fluid_forces_batched::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
-                (false, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+                (false, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_ARTIFICIAL, DIFF_FOURTAKAS, false, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
                 (true, false) => fluid_forces_batched::<Dim2, WendlandC2, VISC_LAMINAR, DIFF_FOURTAKAS>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
-                (true, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_LAMINAR, DIFF_FOURTAKAS, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
+                (true, true) => fluid_forces_scalar::<Dim2, WendlandC2, VISC_LAMINAR, DIFF_FOURTAKAS, false, false>(&c, &s.kernel, &s.grid, fields, &mut acc, &mut drho),
             };
             (acc, drho)
         };
