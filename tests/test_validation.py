@@ -598,3 +598,92 @@ def test_kimmoun_and_stansby_scenes_take_numerical_settings_only() -> None:
     assert free.until == plain.until
     with pytest.raises(ValidateError, match="--set: key 'until'"):
         check_settings([("stansby2d", 2.5)], ["until=3"])
+
+
+def test_seawall2d_case_plumbing() -> None:
+    """seawall2d: the gauges stand at Hsiao & Lin's positions less the offset, the seawall's
+    crest 0.056 m above the still water, the run long enough for the records; the metrics read
+    a simulation that reproduces the records as (nearly) exact and one a tenth too high as
+    about a tenth off at its peaks."""
+    import warnings
+
+    from watersim.flume import ElevationGauge, OvertoppingGauge
+    from watersim.flume_cases import HSIAO_LIN_GAUGES, HSIAO_LIN_OFFSET, flume_builder
+    from watersim.validation import seawall as sw
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        scene = flume_builder("seawall2d", {})
+    gauges = {g.name: g.x for g in scene.gauges if isinstance(g, ElevationGauge)}
+    assert gauges == {n: pytest.approx(x - HSIAO_LIN_OFFSET) for n, x in HSIAO_LIN_GAUGES.items()}
+    crest = [g for g in scene.gauges if isinstance(g, OvertoppingGauge)]
+    assert [g.x for g in crest] == [pytest.approx(13.948 - HSIAO_LIN_OFFSET)]
+    bx, bz = scene.flume.beach.profile_in(scene.flume, scene.tank_height)
+    crest_z = np.interp(13.92 - HSIAO_LIN_OFFSET, bx, bz)
+    assert crest_z - scene.flume.depth == pytest.approx(0.056)
+    beds = {n: float(np.interp(x, bx, bz, left=0.0)) for n, x in gauges.items()}
+    assert beds["WG22"] < 0.2 < beds["WG28"]  # wet at rest before the wall, dry on it
+    quick, _ = sw.seawall_scene(float(scene.dp), quick=True)
+    full, _ = sw.seawall_scene(float(scene.dp))
+    assert full.until - quick.until == pytest.approx(12.0 - sw.QUICK_SPAN, abs=2e-3)
+
+    # a simulation sampled every 0.02 s that is the records themselves, crest at WG1 at 3 s
+    t = np.arange(0.0, 16.0, 0.02)
+    series = {}
+    for name in HSIAO_LIN_GAUGES:
+        td, vd = sw.seawall_reference(name)
+        value = np.interp(t - 3.0, td, vd)
+        if name in sw.INUNDATION_GAUGES:  # depth above the ground -> elevation, dry = NaN
+            value = np.where(value > 0.0, value + beds[name] - 0.2, np.nan)
+        series[name] = value
+    errors, details = sw.seawall_metrics(t, series, beds, np.linspace(0.0, 0.01, t.size))
+    assert details["t_crest_wg1"] == pytest.approx(3.0, abs=0.02)
+    assert errors["gauge_rms"] < 0.03 and errors["peak"] < 0.03
+    assert details["overtopped_volume"] == pytest.approx(0.01)
+    assert set(details["series"]) == set(HSIAO_LIN_GAUGES)
+    high = {n: v * 1.1 if n not in sw.INUNDATION_GAUGES else v for n, v in series.items()}
+    errors_high, details_high = sw.seawall_metrics(t, high, beds)
+    assert details_high["peak_simulated"]["WG3"] == pytest.approx(
+        1.1 * details["peak_simulated"]["WG3"], rel=1e-6)
+    assert errors_high["gauge_rms"] > errors["gauge_rms"] + 0.005
+    # a gauge that stays dry records the ground (elevation) or no water (inundation)
+    dry = np.full(3, np.nan)
+    assert list(sw.gauge_series(dry, 0.21, 0.2, True)) == [0.0, 0.0, 0.0]
+    assert sw.gauge_series(dry, 0.17, 0.2, False) == pytest.approx([-0.03] * 3)
+    assert sw.seawall_metrics(t, {}, beds)[0] == {"gauge_rms": None, "peak": None}
+
+
+def test_yeh3d_case_plumbing() -> None:
+    """yeh3d: the scene holds the column, the water and the sheet as the set-up says; the
+    metrics read a simulation that is the records themselves (the velocity put on the bore's
+    arrival over the probe) as (nearly) exact, and one with twice the force as 100 % off."""
+    from watersim.validation import yeh
+
+    scene = yeh.yeh_scene(0.02, 0.6)
+    assert scene.tank == yeh.YEH_TANK
+    blocks = [(b.min, b.max) for b in scene.fluid]
+    assert blocks[0] == ((0.0, 0.0, 0.0), (0.4, 0.61, 0.3))
+    assert blocks[1] == ((0.4, 0.0, 0.0), (1.6, 0.61, 0.02))  # the sheet: one layer
+    (column,) = scene.bodies
+    assert (column.min, column.max) == yeh.YEH_OBSTACLE and column.name == "column"
+
+    t = np.arange(0.0, 1.5, yeh.SAMPLE)
+    tf, ff = yeh.yeh_reference("force")
+    tv, uv = yeh.yeh_reference("velocity")
+    fx = np.interp(t, tf, ff)
+    arrival = 0.2412
+    depth = np.clip(0.05 + (t - arrival), 0.03, 0.09)  # the sheet, then the bore
+    u = np.interp(t - arrival, tv, uv)
+    kernel_sum = np.ones_like(t)
+    errors, details = yeh.yeh_metrics(t, fx, t, u, kernel_sum, depth)
+    assert details["t_bore_at_probe"] == pytest.approx(arrival, abs=1e-9)
+    assert abs(errors["force_peak"]) < 0.02 and abs(errors["force_impulse"]) < 0.01
+    # the digitised points scatter: resampling them leaves a few per cent
+    assert errors["force_rms"] < 0.06 and errors["velocity_rms"] < 0.06
+    double, _ = yeh.yeh_metrics(t, 2.0 * fx, t, u, kernel_sum, depth)
+    assert double["force_peak"] == pytest.approx(1.0, abs=0.04)
+    assert double["force_impulse"] == pytest.approx(1.0, abs=0.02)
+    # a probe the bore never reaches: no velocity error, the force still measured
+    never, details = yeh.yeh_metrics(t, fx, t, u, kernel_sum, np.full(t.size, np.nan))
+    assert never["velocity_rms"] is None and details["t_bore_at_probe"] is None
+    assert never["force_peak"] is not None

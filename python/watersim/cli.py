@@ -22,9 +22,10 @@ field of the case's builder (:class:`~watersim.DamBreak` or :class:`~watersim.Ta
 exits with code 2 and a one-line message naming the field; a run stopped by a stability monitor
 writes what it has and exits with code 1.
 
-The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``solitary2d`` and
-``flume3d`` (:mod:`watersim.flume_cases`) take the numerical parameters and dotted keys of their
-objects (``--set wave.height=0.06 --set paddle.order=1 --set beach.slope=0.05``) and write
+The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``solitary2d``,
+``seawall2d`` and ``flume3d`` (:mod:`watersim.flume_cases`) take the numerical parameters and
+dotted keys of their objects (``--set wave.height=0.06 --set paddle.order=1 --set
+beach.slope=0.05``) and write
 ``summary.json``, ``gauges.csv`` and one ``velocity_NAME.csv`` per velocity probe or window
 (rewritten as the run goes, so an unstable run keeps its records; headers with units,
 :func:`watersim.flume.gauges.csv_column`) and ``analysis.json``, whose notes (what a too short

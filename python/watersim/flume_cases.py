@@ -43,6 +43,7 @@ from .flume import (
     ElevationGauge,
     Flume,
     FlumeScene,
+    OvertoppingGauge,
     Piston,
     PlaneBeach,
     ProfileBeach,
@@ -59,6 +60,8 @@ from .scenes import SceneBuilder
 __all__ = [
     "BEJI_BATTJES_GAUGES",
     "FLUME_CASES",
+    "HSIAO_LIN_GAUGES",
+    "HSIAO_LIN_OFFSET",
     "STANSBY_GAUGES",
     "STANSBY_UNDERTOW_GAUGES",
     "FlumeCase",
@@ -86,6 +89,28 @@ BEJI_BATTJES_GAUGES: tuple[float, ...] = (2.0, 4.0, 5.2, 10.5, 12.5, 13.5, 14.5,
                                           21.0)
 """Gauge x [m] of the Beji & Battjes (1993) records shipped in ``watersim/data`` (waves2Foam's
 a02 ... a21; ``shared/validation/SOURCES.md`` section 9)."""
+
+HSIAO_LIN_GAUGES: dict[str, float] = {
+    "WG1": 8.9, "WG3": 10.6, "WG10": 12.644, "WG22": 13.462, "WG28": 13.732, "WG37": 14.005,
+    "WG40": 14.12,
+}
+"""Hsiao & Lin (2010) gauges used by the validation case seawall2d, at x [m] in their frame
+(``shared/validation/SOURCES.md`` section 10: Basilisk's seawall.c samples its model at these
+less 3 m). WG28, WG37 and WG40 stand on the seawall's front face, its back face and the ground
+behind it, dry at rest: they record the inundation depth above the local ground."""
+
+HSIAO_LIN_OFFSET = 5.0
+"""Hsiao & Lin's x less the seawall2d flume's x [m]: the paddle at rest stands at their
+x = 5 m, 3.9 m (19.5 depths) before WG1, room for Goring's wave to form."""
+
+HSIAO_LIN_BED: tuple[tuple[float, float], ...] = (
+    (10.0, 0.0), (13.6, 0.18), (13.9, 0.256), (13.948, 0.256), (14.045, 0.20225),
+)
+"""The bed of Hsiao & Lin's flume (their Fig. 1 as Basilisk's seawall.c writes it), (x, z) [m]
+in their frame above the 0.2 m deep floor: a 1:20 slope from x = 10 m, the seawall's front face
+(13.6-13.9 m), its crest 0.056 m above the still water (to 13.948 m) and its back face down to
+the 1:20 slope, which goes on behind the wall."""
+
 
 BEJI_BATTJES_FILES: dict[float, str] = {
     x: f"beji_battjes1993_a{n:02d}_x{x:.1f}m_waves2foam.csv"
@@ -367,6 +392,41 @@ def case_solitary2d(s: _Settings) -> FlumeScene:
     return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, runup=True, **num)
 
 
+def case_seawall2d(s: _Settings) -> FlumeScene:
+    """Hsiao & Lin (2010): a breaking solitary wave overtopping a seawall (their "type 1" wave).
+
+    d = 0.2 m, H = 0.07 m (H/d = 0.35), Goring piston motion; the bed of
+    :data:`HSIAO_LIN_BED` (a 1:20 slope, a seawall whose crest stands 0.056 m above the still
+    water, the slope going on behind it), the flume's x their x less
+    :data:`HSIAO_LIN_OFFSET` (5 m); flume 11 m (their x = 16 m, where the ground behind the
+    wall stands 0.1 m above the still water). Gauges at their seven positions
+    (:data:`HSIAO_LIN_GAUGES`, named WG1 ... WG40) and an overtopping gauge (``crest``) at the
+    crest's landward edge (their x = 13.948 m). Walls 0.45 m high.
+    dp = 0.2 / 9 = 0.02222 m (9 layers, H/dp = 3.15, about 3,400 particles); until = half the
+    paddle motion + travel to WG1 + 12 s (the records' span after the crest passes WG1).
+    """
+    wave = s.apply("wave", SolitaryWave(height=0.07))
+    paddle = s.paddle(Piston(order=1, ramp_periods=0.0))
+    depth = 0.2
+    length = 11.0
+    end = length + HSIAO_LIN_OFFSET
+    bx, bz = zip(*(*HSIAO_LIN_BED, (end, (end - 10.0) / 20.0)), strict=True)
+    beach = ProfileBeach(x=tuple(round(x - HSIAO_LIN_OFFSET, 6) for x in bx), z=bz)
+    flume = Flume(length=length, depth=depth, beach=beach, height=0.45)
+    gauges: list[Any] = [ElevationGauge(round(x - HSIAO_LIN_OFFSET, 6), name=name)
+                         for name, x in HSIAO_LIN_GAUGES.items()]
+    gauges.append(OvertoppingGauge(round(13.948 - HSIAO_LIN_OFFSET, 6), name="crest"))
+    num = s.numerics(dp=lattice_dp(depth, 0.0233), **nm.FLUME_CASE)
+    if not s.was_set("until"):
+        probe = _quiet_scene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num,
+                             until=1.0)
+        assert probe.law.duration is not None
+        c = float(wt.solitary_celerity(wave.height, depth, probe.g))
+        x_wg1 = HSIAO_LIN_GAUGES["WG1"] - HSIAO_LIN_OFFSET
+        num["until"] = round(wave.delay + 0.5 * probe.law.duration + x_wg1 / c + 12.0, 2)
+    return FlumeScene(flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
+
+
 def case_flume3d(s: _Settings) -> FlumeScene:
     """A narrow, coarse 3D flume with a piston: the wave-maker in 3D.
 
@@ -421,6 +481,8 @@ FLUME_CASES: dict[str, FlumeCase] = {
                            case_stansby2d),
     "bar2d": FlumeCase("Beji & Battjes (1993) submerged bar", case_bar2d),
     "solitary2d": FlumeCase("solitary wave running up a 1:19.85 beach", case_solitary2d),
+    "seawall2d": FlumeCase("Hsiao & Lin (2010): breaking solitary wave over a seawall",
+                           case_seawall2d),
     "flume3d": FlumeCase("narrow coarse 3D flume with a piston", case_flume3d),
 }
 """The built-in flume cases of ``watersim run``."""

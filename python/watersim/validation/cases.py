@@ -57,9 +57,11 @@ from .absorption import (
 )
 from .buchner import BUCHNER_H, WALL_MODELS, plot_buchner, run_buchner
 from .longflume import LONG_FLUME_WAVE, long_flume_scene, run_long_flume
-from .running import _Clock, _with_until, advance, make_record, numerical_case_scene
+from .running import _Clock, _with_until, advance, flume_run, make_record, numerical_case_scene
+from .seawall import SEAWALL_DEPTH, SEAWALL_HEIGHT, plot_seawall, run_seawall, seawall_scene
 from .solitary import SOLITARY_DEPTH, SOLITARY_HEIGHT, SOLITARY_SLOPE, solitary_scene
-from .stansby import STANSBY_HEIGHT, stansby_metrics, stansby_until
+from .stansby import STANSBY_HEIGHT, run_stansby, stansby_scene
+from .yeh import plot_yeh, run_yeh
 
 __all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
 
@@ -406,15 +408,6 @@ def _phases(sim: FlumeSimulation, scene: FlumeScene, names: list[str]) -> dict[s
     return out
 
 
-def _flume_run(case: Case, scene: FlumeScene, res: float, progress: bool, label: str
-               ) -> tuple[FlumeSimulation, str, str | None, dict[str, Any]]:
-    """Build and run a flume scene; returns the simulation, status, message and analysis."""
-    sim = scene.build()
-    until = float(scene.until)  # type: ignore[arg-type]
-    status, message = advance(sim, until, max(until / 50.0, 1e-3), None, progress, label)
-    return sim, status, message, sim.analyse()
-
-
 FLUME2D_HEIGHT = 0.1
 """Wave height of the flume2d validation case [m]: the built-in flume2d (d = 0.3 m, T = 1.2 s,
 L = 1.77 m) with H = 0.1 m (H/L = 0.056, H/d = 0.33, within Stokes' second order), twice the
@@ -437,7 +430,7 @@ def _run_flume2d(case: Case, res: float, quick: bool, progress: bool) -> dict[st
     dp = case.dp(res)
     scene, notes = _flume2d_items(dp, 2)
     clock = _Clock()
-    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    sim, status, message, result = flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     assert scene.period is not None and scene.wavelength is not None
     wl, period, height = scene.wavelength, scene.period, case.length
     depth = scene.flume.depth
@@ -580,7 +573,7 @@ def _run_secondorder(case: Case, res: float, quick: bool, progress: bool) -> dic
             scene = secondorder_scene(dp, order)
         notes = [f"{w.category.__name__}: {w.message}" for w in caught]
         assert scene.wavelength is not None
-        sim, st, msg, result = _flume_run(case, scene, res, progress,
+        sim, st, msg, result = flume_run(case, scene, res, progress,
                                           f"{case.name} {res:g} order {order}")
         n_particles = max(n_particles, sim.n_particles)
         steps += sim.steps
@@ -644,7 +637,7 @@ def _run_bar(case: Case, res: float, quick: bool, progress: bool) -> dict[str, A
 
     scene, notes = _with_until("bar2d", {"dp": repr(dp)}, until)
     clock = _Clock()
-    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    sim, status, message, result = flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     assert scene.period is not None
     measured = _measured_bar(scene.period)
     names = [g["name"] for g in result["gauges"]]
@@ -693,7 +686,7 @@ def _run_solitary(case: Case, res: float, quick: bool, progress: bool,
     depth, height = SOLITARY_DEPTH, SOLITARY_HEIGHT
     scene, notes = solitary_scene(dp, settings)
     clock = _Clock()
-    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    sim, status, message, result = flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     law = float(wt.synolakis_runup(height, depth, SOLITARY_SLOPE)) * depth
     ru = result.get("runup") or {}
     runup = ru.get("max")
@@ -759,7 +752,7 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool,
     dp = case.dp(res)
     scene, notes = kimmoun_scene(dp, settings, quick)
     clock = _Clock()
-    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    sim, status, message, result = flume_run(case, scene, res, progress, f"{case.name} {res:g}")
     br = result.get("breaking") or {}
     ru = result.get("runup") or {}
     # the breaker: where the phase-averaged wave first reaches H/d = 0.78 and its height there
@@ -808,29 +801,6 @@ def _run_kimmoun(case: Case, res: float, quick: bool, progress: bool,
 
 # ------------------------------------------------------------------------------------------------
 # Stansby & Feng breaking (seed 002): metrics in validation/stansby.py
-
-
-def stansby_scene(dp: float, settings: Mapping[str, str] | None = None, quick: bool = False
-                  ) -> tuple[FlumeScene, list[str]]:
-    """stansby2d at ``dp`` with ``--set``-style numerical ``settings``, until
-    :func:`stansby_until` (about 25.2 s; ``quick`` 20.8 s), and the warnings its build gave."""
-    return numerical_case_scene("stansby2d", dp, settings,
-                                functools.partial(stansby_until, quick=quick))
-
-
-def _run_stansby(case: Case, res: float, quick: bool, progress: bool,
-                 settings: Mapping[str, str] | None = None) -> dict[str, Any]:
-    """stansby2d (seed 002 flume, H = 0.105 m, T = 2.42 s, 1:20 beach from 2.0 m;
-    :func:`stansby_scene`); metrics by :func:`stansby_metrics`."""
-    dp = case.dp(res)
-    scene, notes = stansby_scene(dp, settings, quick)
-    clock = _Clock()
-    sim, status, message, result = _flume_run(case, scene, res, progress, f"{case.name} {res:g}")
-    errors, details = stansby_metrics(result)
-    details.update(until=scene.until, settings=dict(settings or {}), notes=notes,
-                   analysis_notes=result.get("notes", []))
-    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
-                       errors, details)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -941,7 +911,7 @@ CASES: dict[str, Case] = {
              "target height; stream-function (nonlinear) wavelength; still-water level",
              "wave height / dp", LONG_FLUME_WAVE["height"], (5.0, 10.0), (2.5,), "H_10L", 0.05,
              "wave height at 10 wavelengths within 5 % of the target",
-             functools.partial(run_long_flume, flume_run=_flume_run, phases=_phases,
+             functools.partial(run_long_flume, flume_run=flume_run, phases=_phases,
                                mean_level_drift=_mean_level_drift),
              "Issue 30's measure of numerical dissipation (`watersim.validation.longflume`): "
              "gauges at 1 to 10 L, a 1.5 L damping zone past 10.5 L, the numerics of flume2d "
@@ -1020,7 +990,7 @@ CASES: dict[str, Case] = {
              "seed 002 (Makris et al. on Stansby & Feng 2005): H = 0.105 m, incipient breaking "
              "at gauges 8-10, its SPHysics undertow (Table 3) and crest celerity",
              "wave height / dp", STANSBY_HEIGHT, (2.5, 3.4, 4.5), (2.5,), "H_flat", 0.03,
-             "height over the flat floor within 3 % of H = 0.105 m", _run_stansby,
+             "height over the flat floor within 3 % of H = 0.105 m", run_stansby,
              "The built-in stansby2d (stream-function piston law, chosen by the wave's Ursell "
              "number 48; beach toe at 2.0 m, an estimate: the seed does not give it); "
              "resolution 3.4 is the built-in's default dp (0.34 / 11 m). "
@@ -1056,6 +1026,45 @@ CASES: dict[str, Case] = {
                              "undertow_seaward_mean",
                              "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
              depth=0.34, scene=stansby_scene),
+        Case("seawall2d", "Hsiao & Lin (2010): breaking solitary wave (H/d = 0.35) "
+             "overtopping a seawall on a 1:20 slope",
+             "Hsiao & Lin (2010) gauge records (Basilisk's copy): elevation at WG1-WG22, "
+             "inundation depth at WG28-WG40",
+             "wave height / dp", SEAWALL_HEIGHT, (3.0, 5.0, 7.0), (2.0,), "gauge_rms", 0.10,
+             "gauge records within 10 % of H (RMS, mean over the seven gauges)", run_seawall,
+             "The built-in seawall2d (`watersim/validation/seawall.py`): d = 0.2 m, H = 0.07 m, "
+             "Goring's piston 3.9 m before WG1. The records' clock starts when the crest "
+             "passes WG1; the simulation's is set on its own crest there. `gauge_rms`: the "
+             "mean over the seven gauges of the RMS difference from the record at the "
+             "record's times, over H; `peak`: the RMS over the gauges of the difference of "
+             "the highest values, over H. WG28, WG37 and WG40 record the inundation depth "
+             "above the ground (the seawall's faces and the ground behind it); where a "
+             "simulated gauge is dry, its elevation is the ground's. "
+             "`details.overtopped_volume`: the volume per unit width that crossed the crest's "
+             "landward edge (no measured value in the records). The records of WG3, WG22, WG28, "
+             "WG37 and WG40 read 4-5 mm where the water is still or the ground dry (6-7 % of "
+             "H, an offset of the gauges or of the digitisation, left in). `--quick` runs 6 s "
+             "past WG1.",
+             report_details=("crest_height_wg1_error", "overtopped_volume", "t_crest_wg1"),
+             depth=SEAWALL_DEPTH, figure=plot_seawall, scene=seawall_scene),
+        Case("yeh3d", "Yeh & Petroff 3D dam break against a square column: force, velocity",
+             "Yeh & Petroff's records as digitised by Raad & Bidoae (2005) (PySPH's copy)",
+             "column width / dp", 0.12, (5.0, 6.0, 8.0), (5.0,), "force_peak", 0.15,
+             "first-impact force on the column within 15 % of the record's 33.1 N", run_yeh,
+             "Tank 1.6 x 0.61 x 0.4 m, water 0.4 m long and 0.3 m high against the back wall, "
+             "the record's 1 cm sheet over the rest of the floor as one particle layer (dp "
+             "thick), a 0.12 m square column at x = 0.96 m (`watersim/validation/yeh.py`), "
+             "DBC walls and the general scene's numerics, to 1.5 s (0.6 s with --quick). "
+             "`force_peak`: the largest Fx for t in [0.3, 0.6] s against the record's (the "
+             "simulated peak is a short acoustic spike, as in the Buchner cases); "
+             "`force_impulse`: the integral of Fx over that window against the record's; "
+             "`force_rms`: the RMS difference of Fx from the record up to the run's end, over "
+             "its peak; `velocity_rms`: the same for u at (0.814, 0.305, 0.026) m over its "
+             "peak (2.2 m/s), the simulated series put on the record's clock, which starts "
+             "when the bore reaches the probe (here: when the water over the probe first "
+             "stands 5 cm deep, above the sheet).",
+             report_details=("force_peak", "t_force_peak", "force_impulse", "t_bore_at_probe"),
+             figure=plot_yeh),
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "
              "vertical wall for 60 periods, piston and flap, absorption on and off; a solitary "
              "wave against the wall",

@@ -13,6 +13,7 @@ from typing import Any
 from .._core import InstabilityError
 from ..flume import (
     FlumeScene,
+    FlumeSimulation,
 )
 from ..flume_cases import _Settings, flume_builder
 from ..runrecord import VALIDATION_FIELDS, run_record, stop_status
@@ -162,3 +163,12 @@ def numerical_case_scene(case: str, dp: float, settings: Mapping[str, str] | Non
     probe.numerics(dp=dp)
     probe.only_numerics(case)
     return _with_until(case, {**(settings or {}), **(fixed or {}), "dp": repr(dp)}, until)
+
+
+def flume_run(case: Any, scene: FlumeScene, res: float, progress: bool, label: str
+              ) -> tuple[FlumeSimulation, str, str | None, dict[str, Any]]:
+    """Build and run a flume scene; returns the simulation, status, message and analysis."""
+    sim = scene.build()
+    until = float(scene.until)  # type: ignore[arg-type]
+    status, message = advance(sim, until, max(until / 50.0, 1e-3), None, progress, label)
+    return sim, status, message, sim.analyse()

@@ -4,6 +4,7 @@ runner and the registry entry are in :mod:`watersim.validation.cases`)."""
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from importlib import resources
 from typing import Any
@@ -14,6 +15,7 @@ from .. import wave_theory as wt
 from ..flume import FlumeScene
 from ..flume_cases import STANSBY_GAUGES, STANSBY_UNDERTOW_GAUGES
 from . import metrics as m
+from .running import _Clock, flume_run, make_record, numerical_case_scene
 
 __all__ = ["stansby_metrics", "stansby_undertow_table", "stansby_until"]
 
@@ -151,3 +153,26 @@ def stansby_until(scene: FlumeScene, quick: bool) -> float:
     assert scene.period is not None
     return (scene.law.ramp_duration + scene.arrival_time(max(STANSBY_GAUGES))
             + (1.0 + STANSBY_STEADY_PERIODS[quick]) * scene.period)
+
+
+def stansby_scene(dp: float, settings: Mapping[str, str] | None = None, quick: bool = False
+                  ) -> tuple[FlumeScene, list[str]]:
+    """stansby2d at ``dp`` with ``--set``-style numerical ``settings``, until
+    :func:`stansby_until` (about 25.2 s; ``quick`` 20.8 s), and the warnings its build gave."""
+    return numerical_case_scene("stansby2d", dp, settings,
+                                functools.partial(stansby_until, quick=quick))
+
+
+def run_stansby(case: Any, res: float, quick: bool, progress: bool,
+                settings: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """stansby2d (seed 002 flume, H = 0.105 m, T = 2.42 s, 1:20 beach from 2.0 m;
+    :func:`stansby_scene`); metrics by :func:`stansby_metrics` (the runner of :mod:`.cases`)."""
+    dp = case.dp(res)
+    scene, notes = stansby_scene(dp, settings, quick)
+    clock = _Clock()
+    sim, status, message, result = flume_run(case, scene, res, progress, f"{case.name} {res:g}")
+    errors, details = stansby_metrics(result)
+    details.update(until=scene.until, settings=dict(settings or {}), notes=notes,
+                   analysis_notes=result.get("notes", []))
+    return make_record(case.name, res, dp, sim, clock.wall(), clock.cpu(), status, message,
+                       errors, details)
