@@ -1,18 +1,25 @@
-"""Replace the (case, resolution) runs of runs.json by the reruns in the given JSON files, in
-place; a run at a resolution runs.json does not hold yet goes after its case's last run, in
-resolution order, and the runs of a case runs.json does not hold yet go at its end."""
+"""Replace the (case, resolution, settings) runs of runs.json by the reruns in the given JSON
+files, in place; a run runs.json does not hold yet goes after its case's last run at a lower
+resolution, and the runs of a case runs.json does not hold yet go at its end. The settings are
+a run's numerical --set items (details.settings; none for the default numerics)."""
 import json
 import sys
+
+
+def key_of(r):
+    settings = (r.get("details") or {}).get("settings") or {}
+    return (r["case"], float(r["resolution"]), json.dumps(settings, sort_keys=True))
+
 
 path = sys.argv[1]
 runs = json.load(open(path))
 new = {}
 for f in sys.argv[2:]:
     for r in json.load(open(f)):
-        new[(r["case"], float(r["resolution"]))] = r
+        new[key_of(r)] = r
 seen = set()
 for i, r in enumerate(runs):
-    key = (r["case"], float(r["resolution"]))
+    key = key_of(r)
     if key in new:
         old = r
         rerun = new[key]

@@ -23,6 +23,7 @@ from watersim.validation.report import (
     convergence_order,
     pareto_front,
     self_convergence,
+    settings_label,
     write_report,
 )
 from watersim.validation.sweep import (
@@ -289,6 +290,40 @@ def test_report_writes_readme_and_plots(tmp_path) -> None:
     slope = np.polyfit(np.log([0.05, 0.025, 0.0125]), np.log([0.05, 0.012, 0.004]), 1)[0]
     assert f"`pressure_rms`: p = {slope:.2f} over 3 runs; the error falls" in text
     assert (tmp_path / "tank2d.png").stat().st_size > 1000
+
+
+def test_report_compares_the_settings_of_a_case(tmp_path) -> None:
+    """Runs of one case with different ``--set`` items: one row per run with its setting, the
+    Pareto front over CPU time across settings, each setting's order, and the cheapest run
+    that meets the target whatever its setting."""
+
+    def with_settings(rec: dict, settings: dict | None, cpu: float) -> dict:
+        return {**rec, "cpu_s": cpu, "details": {} if settings is None else {"settings": settings}}
+
+    default = [with_settings(_rec(10, 0.05, 1.0, 0.05), None, 1.0),
+               with_settings(_rec(20, 0.025, 8.0, 0.02), {}, 8.0)]
+    option = [with_settings(_rec(10, 0.05, 2.0, 0.008), {"viscosity": "laminar", "b": "1"}, 2.0),
+              with_settings(_rec(20, 0.025, 16.0, 0.004, ), {"viscosity": "laminar", "b": "1"},
+                            16.0),
+              with_settings(_rec(20, 0.025, 3.0, None, "density_out_of_range"),
+                            {"kernel": "wendland_c4"}, 3.0)]
+    assert settings_label(default[0]) == settings_label(default[1]) == "default"
+    assert settings_label(option[0]) == "b=1, viscosity=laminar"
+    assert [r["resolution"] for r in pareto_front(default + option, "pressure_rms", "cpu_s")] \
+        == [10, 10, 20]
+    text = write_report(default + option, tmp_path).read_text()
+    assert "| setting | resolution |" in text
+    assert "| b=1, viscosity=laminar | 20 | 100 | 10 | 16 | ok | 0.004 |" in text
+    assert "| kernel=wendland_c4 | 20 | 100 | 10 | 3 | **density_out_of_range** |" in text
+    assert "Pareto front (`pressure_rms` against CPU time): default at resolution 10 (1 s, " \
+        "0.05), b=1, viscosity=laminar at resolution 10 (2 s, 0.008)" in text
+    assert "- b=1, viscosity=laminar: p = 1.00 over 2 runs; the error falls" in text
+    # tank2d's target is 1 %: met first by the option at resolution 10 (2 s CPU)
+    assert "the cheapest run that meets" in text and "b=1, viscosity=laminar at resolution 10" \
+        in text
+    assert (tmp_path / "tank2d.png").stat().st_size > 1000
+    # one setting only: the usual section, without a settings column
+    assert "| setting |" not in write_report(default, tmp_path / "one").read_text()
 
 
 # ------------------------------------------------------------------------------------------------

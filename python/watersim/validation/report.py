@@ -24,6 +24,7 @@ __all__ = [
     "ok_runs",
     "pareto_front",
     "self_convergence",
+    "settings_label",
     "write_report",
 ]
 
@@ -90,11 +91,18 @@ def convergence_order(dp: Sequence[float], error: Sequence[float]) -> Convergenc
     return ConvergenceOrder(slope, len(pairs), by_dp[-1] < by_dp[0], every_step)
 
 
-def pareto_front(records: Sequence[Record], metric: str) -> list[Record]:
-    """The runs no other run beats on both wall time and ``metric`` (finished runs only),
-    sorted by wall time: each is cheaper or more accurate than every other."""
+def settings_label(record: Record) -> str:
+    """The run's numerical ``--set`` items (``details.settings``) as ``key=value, ...`` in key
+    order, or ``default`` for a run without any."""
+    settings = (record.get("details") or {}).get("settings") or {}
+    return ", ".join(f"{k}={settings[k]}" for k in sorted(settings)) or "default"
+
+
+def pareto_front(records: Sequence[Record], metric: str, cost: str = "wall_s") -> list[Record]:
+    """The runs no other run beats on both ``cost`` (wall time, or ``cpu_s``) and ``metric``
+    (finished runs only), sorted by cost: each is cheaper or more accurate than every other."""
     runs = sorted(ok_runs(records, metric),
-                  key=lambda r: (float(r["wall_s"]), _error(r, metric)))
+                  key=lambda r: (float(r[cost]), _error(r, metric)))
     front: list[Record] = []
     best = math.inf
     for r in runs:
@@ -283,11 +291,111 @@ def write_report(
     return readme
 
 
+def _plot_options(name: str, runs: Sequence[Record], primary: str, path: Path) -> None:
+    """The primary error of each setting's runs against CPU time and against dp, one series
+    per setting (:func:`settings_label`)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    labels = list(dict.fromkeys(settings_label(r) for r in runs))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.4 + 0.16 * len(labels)))
+    colours = plt.get_cmap("tab20")
+    for i, label in enumerate(labels):
+        good = sorted((r for r in ok_runs(runs, primary) if settings_label(r) == label
+                       and (_error(r, primary) or 0.0) > 0.0), key=lambda r: float(r["dp"]))
+        if not good:
+            continue
+        style = dict(color=colours(i % 20), marker="os^vDP*X<>hpd8"[i % 14], label=label)
+        err = [_error(r, primary) for r in good]
+        ax1.loglog([float(r["cpu_s"]) for r in good], err, "-", **style)  # type: ignore[arg-type]
+        ax2.loglog([float(r["dp"]) for r in good], err, "-", **style)  # type: ignore[arg-type]
+    front = pareto_front(runs, primary, "cpu_s")
+    if front:
+        ax1.step([float(r["cpu_s"]) for r in front], [_error(r, primary) for r in front],
+                 where="post", color="k", lw=2.5, alpha=0.3, label="Pareto front")
+    ax1.set_xlabel("CPU time [s]")
+    ax1.set_ylabel(f"{primary} [-]")
+    ax1.set_title(f"{name}: {primary} against CPU time, by setting")
+    ax2.set_xlabel("dp [m]")
+    ax2.set_title(f"{name}: {primary} against dp")
+    ax2.invert_xaxis()
+    for ax in (ax1, ax2):
+        ax.grid(True, which="both", alpha=0.3)
+    handles, names = ax1.get_legend_handles_labels()
+    # below the panels: the settings' labels are long
+    fig.legend(handles, names, loc="lower center", ncol=2, fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0.0, 0.03 + 0.025 * math.ceil(len(names) / 2), 1.0, 1.0))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _options_section(name: str, runs: list[Record], case: Any, out: Path
+                     ) -> tuple[str, list[str]]:
+    """A case whose runs carry different numerical settings: one row per run with its
+    setting, the primary error against CPU time by setting (``out/<name>.png``), each
+    setting's convergence order, the Pareto front over CPU time and the cheapest run that
+    meets the target, whatever its setting."""
+    primary = getattr(case, "primary", None) or _metrics_of(runs)[0]
+    metrics = _metrics_of(runs)
+    if primary in metrics:
+        metrics.remove(primary)
+        metrics.insert(0, primary)
+    runs = sorted(runs, key=lambda r: (settings_label(r) != "default", settings_label(r),
+                                       float(r["resolution"])))
+    png = f"{name}.png"
+    _plot_options(name, runs, primary, out / png)
+    body = [f"## {name}", ""]
+    if case is not None:
+        body += [f"{case.description}. Reference: {case.reference}. "
+                 f"Resolution = {case.resolution_meaning}. One row per run and setting "
+                 "(`--set` items, `details.settings` in runs.json).", ""]
+    body += ["| setting | resolution | particles | steps | cpu [s] | status | "
+             + " | ".join(metrics) + " |", "|" + "---|" * (6 + len(metrics))]
+    for r in runs:
+        status = r["status"] if r["status"] == "ok" else f"**{r['status']}**"
+        body.append(f"| {settings_label(r)} | {_fmt(r['resolution'])} | {r['n_particles']} | "
+                    f"{r['steps']} | {_fmt(r.get('cpu_s'))} | {status} | "
+                    + " | ".join(_fmt(_error(r, k)) for k in metrics) + " |")
+    for r in runs:
+        if r["status"] != "ok":
+            body.append(f"\n- {settings_label(r)}, resolution {_fmt(r['resolution'])}: "
+                        f"{r['status']}: {r.get('message')}")
+    labels = list(dict.fromkeys(settings_label(r) for r in runs))
+    orders = [(label, [r for r in runs if settings_label(r) == label]) for label in labels]
+    orders = [(label, rs) for label, rs in orders if len(ok_runs(rs, primary)) >= 2]
+    if orders:
+        body += ["", f"Observed convergence order of `{primary}` by setting:", ""]
+        body += [_order_line(rs, primary).replace(f"- `{primary}`", f"- {label}", 1)
+                 for label, rs in orders]
+    front = pareto_front(runs, primary, "cpu_s")
+    body += ["", f"Pareto front (`{primary}` against CPU time): " + (", ".join(
+        f"{settings_label(r)} at resolution {_fmt(r['resolution'])} ({_fmt(r['cpu_s'])} s, "
+        f"{_fmt(_error(r, primary))})" for r in front) or "empty") + "."]
+    answer = "-"
+    if case is not None:
+        good = [r for r in ok_runs(runs, primary) if (_error(r, primary) or 0.0) <= case.target]
+        best = min(good, key=lambda r: float(r["cpu_s"])) if good else None
+        answer = (f"none of the runs meets it ({case.target_text}, metric `{primary}`)"
+                  if best is None else
+                  f"the cheapest run that meets {case.target_text} is {settings_label(best)} "
+                  f"at resolution {_fmt(best['resolution'])} ({_fmt(best['cpu_s'])} s CPU)")
+    note = getattr(case, "report_note", "") if case is not None else ""
+    if note:
+        body += ["", note]
+    body += ["", f"**Answer:** {answer}.", "", f"![{name}]({png})", ""]
+    return answer, body
+
+
 def _case_section(name: str, runs: list[Record], case: Any, out: Path) -> tuple[str, list[str]]:
     """One case's section of the report (its figures drawn to ``out/<name>.png`` and, with
     the case's own ``figure``, ``out/<name>-measured.png``): the runs,
     their measured values and failures, the convergence orders, the self-convergence, the
-    Pareto front; and the answer the summary repeats: the cheapest run meeting the target."""
+    Pareto front; and the answer the summary repeats: the cheapest run meeting the target.
+    Runs with different numerical settings: :func:`_options_section`."""
+    if len({settings_label(r) for r in runs}) > 1:
+        return _options_section(name, runs, case, out)
     primary = getattr(case, "primary", None)
     metrics = _metrics_of(runs)
     if primary is not None and primary in metrics:
