@@ -380,3 +380,17 @@ def test_wall_models_are_options_of_their_own() -> None:
         cli.builder_from_args("dambreak2d", ["boundary.slip=no_slip"])
     assert sf.loads(sf.dumps(ws.Tank(boundary=nm.Mdbc(slip="no_slip")))).builder.boundary == \
         nm.Mdbc(slip="no_slip")
+
+
+def test_the_low_dissipation_preset_reaches_the_core() -> None:
+    """``LOW_DISSIPATION`` (Wendland C4, water's viscosity with free-slip walls, delta 0.05,
+    Verlet) is what a flume built with it sends the core."""
+    flume = ws.Flume(length=3.0, depth=0.3)
+    scene = flume.simulation(ws.RegularWave(height=0.03, period=1.0), dp=0.03, until=0.1,
+                             **nm.LOW_DISSIPATION).scene
+    resolved = json.loads(_core.resolve_scene(json.dumps(scene)))
+    assert resolved["kernel"] == "wendland_c4"
+    assert resolved["viscosity"]["model"] == "laminar"
+    assert resolved["viscosity"]["wall_factor"] == 0.0
+    assert resolved["diffusion"] == {"model": "fourtakas", "delta": 0.05}
+    assert resolved["integrator"]["scheme"] == "verlet"

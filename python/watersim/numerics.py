@@ -710,6 +710,22 @@ flume; docs/wave-flume.md, "How far WaterSim carries a wave"): :data:`FLUME2D_AL
 Verlet integrator, one force evaluation per step against two for Symplectic, at the same
 measured decay."""
 
+LOW_DISSIPATION: Mapping[str, Any] = {
+    "kernel": "wendland_c4",
+    "viscosity": Laminar(wall_factor=0.0),
+    "diffusion": Fourtakas(delta=0.05),
+    "integrator": Verlet(),
+}
+"""A non-breaking wave carried over many wavelengths, the combination that measured best on
+flume2d-long (docs/physics-options.md, docs/validation/options): the Wendland C4 kernel,
+water's viscosity with free-slip walls for it (``wall_factor = 0``), Fourtakas' diffusion at
+``delta = 0.05`` (C4 with the Verlet integrator stands no more: at 0.1 the run stops next to
+the piston) and Verlet. Measured at H/dp 5: 1.57 % of the height lost per wavelength against
+3.1 % with :data:`WAVE_CARRYING` (at H/dp 10: 0.70 %); the focused group of
+``examples/focused_group.py`` at 2A/dp 4: the crest at the focus 4.2 % below the linear target
+against 11 %. Not for breaking waves: on kimmoun2d the wave breaks later and lower and runs up
+less than with the flume defaults (docs/physics-options.md, "Wendland C4")."""
+
 WATER: Mapping[str, Any] = {"viscosity": Laminar()}
 """Water's own viscosity (the core's laminar ``nu``, 1e-6 m^2/s) for the cases whose wave runs
 long over a bed or along side walls (kimmoun2d, flume3d): artificial viscosity 0.01 against the
