@@ -724,8 +724,9 @@ the piston) and Verlet. Measured at H/dp 5: 1.57 % of the height lost per wavele
 3.1 % with :data:`WAVE_CARRYING` (at H/dp 10: 0.70 %); the focused group of
 ``examples/focused_group.py`` at 2A/dp 4: the crest at the focus 4.2 % below the linear target
 against 11 %; solitary2d's run-up at H/dp 5 4.7 % below Synolakis' law against 10.0 % with the
-flume defaults, in 107 s of CPU against 199 (docs/validation/options). Not for breaking waves: on kimmoun2d the wave breaks later and lower and runs up
-less than with the flume defaults (docs/physics-options.md, "Wendland C4")."""
+flume defaults, in 107 s of CPU against 199 (docs/validation/options). Not for breaking waves:
+on kimmoun2d the wave breaks later and lower and runs up less than with the flume defaults
+(docs/physics-options.md, "Wendland C4")."""
 
 WATER: Mapping[str, Any] = {"viscosity": Laminar()}
 """Water's own viscosity (the core's laminar ``nu``, 1e-6 m^2/s) for the cases whose wave runs
