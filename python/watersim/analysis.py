@@ -63,6 +63,7 @@ __all__ = [
     "mansard_funke",
     "mean_level_blocks",
     "overturned_surface",
+    "parabola_peak_shift",
     "phase_average",
     "runup_per_wave",
     "vertical_mean_flow",
@@ -1212,6 +1213,17 @@ class CrestCelerity:
     crest_times: FloatArray
 
 
+def parabola_peak_shift(left: npt.ArrayLike, mid: npt.ArrayLike, right: npt.ArrayLike
+                        ) -> npt.NDArray[np.float64]:
+    """Where the parabola through three equally spaced samples peaks, in sample spacings from
+    the middle one: ``(left - right) / (2 (left - 2 mid + right))``; 0 where the samples do not
+    curve down (no peak between them)."""
+    a, b, c = (np.asarray(v, dtype=np.float64) for v in (left, mid, right))
+    curvature = a - 2.0 * b + c
+    return np.where(curvature < 0.0, 0.5 * (a - c) / np.where(curvature < 0.0, curvature, -1.0),
+                    0.0)
+
+
 def crest_celerity(
     eta: npt.ArrayLike,
     t: npt.ArrayLike,
@@ -1251,10 +1263,7 @@ def crest_celerity(
     left = average.mean[(peak - 1) % n, np.arange(xx.size)]
     mid = average.mean[peak, np.arange(xx.size)]
     right = average.mean[(peak + 1) % n, np.arange(xx.size)]
-    curvature = left - 2.0 * mid + right
-    shift = np.where(curvature < 0.0, 0.5 * (left - right) / np.where(curvature < 0.0,
-                                                                       curvature, -1.0), 0.0)
-    crest = (peak + shift) * (T / n)
+    crest = (peak + parabola_peak_shift(left, mid, right)) * (T / n)
     gap = np.diff(xx)
     speed = np.sqrt(float(_scalar_positive("g", g)) * 0.5 * (d[1:] + d[:-1]))
     lag = np.mod(np.diff(crest), T)

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from .. import analysis as an
 from .. import wave_theory as wt
 from ..flume import FlumeScene
 from ..flume_cases import HSIAO_LIN_GAUGES, HSIAO_LIN_OFFSET, _load_csv
@@ -72,10 +73,8 @@ def crest_time(t: npt.NDArray[np.float64], eta: npt.NDArray[np.float64]) -> floa
     finite = np.where(np.isfinite(eta), eta, -np.inf)
     i = int(np.argmax(finite))
     if 0 < i < t.size - 1 and np.all(np.isfinite(eta[i - 1:i + 2])):
-        a, b, c = eta[i - 1], eta[i], eta[i + 1]
-        denom = a - 2.0 * b + c
-        if denom < 0.0:
-            return float(t[i] + 0.5 * (a - c) / denom * (t[i + 1] - t[i]))
+        shift = float(an.parabola_peak_shift(eta[i - 1], eta[i], eta[i + 1]))
+        return float(t[i] + shift * (t[i + 1] - t[i]))
     return float(t[i])
 
 
