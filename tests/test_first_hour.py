@@ -179,8 +179,17 @@ def _synthetic_records(scene: FlumeScene, amplitude: float = 0.02) -> list[dict[
     period = scene.law.period
     assert period is not None
     z = scene.flume.depth + amplitude * np.sin(2.0 * np.pi * t / period)
-    return [{"type": spec["type"], "name": spec["name"], "t": t.tolist(), "z": z.tolist()}
-            for spec in scene._gauge_specs() if spec["type"] in ("elevation", "runup")]
+    records = [{"type": spec["type"], "name": spec["name"], "t": t.tolist(), "z": z.tolist()}
+               for spec in scene._gauge_specs() if spec["type"] in ("elevation", "runup")]
+    # a force gauge's record: an inline force in phase with the wave, no moment
+    dim = scene.flume.dim
+    force = np.zeros((t.size, dim))
+    force[:, 0] = 10.0 * np.sin(2.0 * np.pi * t / period)
+    moment = np.zeros((t.size,) if dim == 2 else (t.size, 3))
+    records += [{"type": "force", "name": spec["name"], "t": t.tolist(),
+                 "force": force.tolist(), "moment": moment.tolist()}
+                for spec in scene._gauge_specs() if spec["type"] == "force"]
+    return records
 
 
 def _analysis(scene: FlumeScene) -> dict[str, Any]:

@@ -116,7 +116,7 @@ def test_every_builtin_case_builds(case: str) -> None:
     # stansby2d (Ursell number 48) takes the stream-function law, within its range
     assert not caught, [str(w.message) for w in caught]
     sim = setup.build()
-    assert sim.n_fluid > 0 and sim.dim == (3 if case == "flume3d" else 2)
+    assert sim.n_fluid > 0 and sim.dim == (3 if case in ("flume3d", "cylinder3d") else 2)
     specs = sim.scene["gauges"]
     assert len({g["name"] for g in specs}) == len(specs)
     params = sim.params()
@@ -124,8 +124,9 @@ def test_every_builtin_case_builds(case: str) -> None:
     # coarse defaults: at most about 4e8 particle-steps (a few minutes on two cores; flume3d,
     # nine particles across its width, is the largest: about 3.8e8). kimmoun2d is the exception:
     # its plunging lip needs H/dp of about 7 (docs/wave-flume.md, "The lip against
-    # resolution"), about 3.2e9 particle-steps, some 15 minutes on two cores
-    limit = 4e9 if case == "kimmoun2d" else 4e8
+    # resolution"), about 3.2e9 particle-steps, some 15 minutes on two cores; and cylinder3d,
+    # a 3D tank 1.5 m wide at H/dp 1.4, about 1.8e9 (some 30 CPU-minutes)
+    limit = 4e9 if case in ("kimmoun2d", "cylinder3d") else 4e8
     assert steps * sim.n_particles < limit, (case, steps, sim.n_particles)
     if case in ("kimmoun2d", "stansby2d", "solitary2d"):
         assert any(g["type"] == "runup" for g in specs)

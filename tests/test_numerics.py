@@ -40,7 +40,8 @@ def _dotted(tree: dict[str, Any], prefix: str = "") -> dict[str, Any]:
 
 def _preset_pairs() -> set[tuple[str, Any]]:
     """Every (dotted key, value) a preset of ``watersim.numerics`` chooses."""
-    presets = [nm.VERIFICATION, *nm.FLUME.values(), nm.FLUME_CASE, nm.WAVE_CARRYING, nm.WATER]
+    presets = [nm.VERIFICATION, *nm.FLUME.values(), nm.FLUME_CASE, nm.WAVE_CARRYING, nm.WATER,
+               nm.LOW_DISSIPATION]
     pairs: set[tuple[str, Any]] = set()
     for preset in presets:
         scene = ws.Tank(**preset).to_scene()  # the preset in the core's form

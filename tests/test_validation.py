@@ -722,3 +722,60 @@ def test_yeh3d_case_plumbing() -> None:
     never, details = yeh.yeh_metrics(t, fx, t, u, kernel_sum, np.full(t.size, np.nan))
     assert never["velocity_rms"] is None and details["t_bore_at_probe"] is None
     assert never["force_peak"] is not None
+
+
+def test_cylinder3d_case_plumbing() -> None:
+    """cylinder3d: half of the tutorial's tank, the half pile against the wall y = 0 (a closed
+    mesh of half the pile's volume), the gauge and the pile at the tutorial's x less the offset;
+    the metrics read a simulation that is the records themselves on another clock as (nearly)
+    exact, one with a fifth more force as 20 % off, and one whose force comes a tenth of a
+    period late as that much out of phase."""
+    import math
+    import warnings
+
+    from watersim.flume import ElevationGauge, ForceGauge
+    from watersim.flume_cases import CHEN_CYLINDER, CHEN_OFFSET, flume_builder
+    from watersim.validation import cylinder as cy
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        scene = flume_builder("cylinder3d", {})
+    dp = float(scene.dp)
+    assert scene.flume.width == pytest.approx(round(1.5 / dp) * dp)
+    (pile,) = scene.structures
+    radius = 0.5 * CHEN_CYLINDER["diameter"]
+    lo, hi = pile.bounds()
+    x_pile = CHEN_CYLINDER["x"] - CHEN_OFFSET
+    assert lo == pytest.approx((x_pile - radius, 0.0, 0.0))
+    assert hi == pytest.approx((x_pile + radius, radius, 0.8))
+    assert pile.volume == pytest.approx(0.5 * math.pi * radius**2 * 0.8, rel=2e-3)
+    (wg5,) = [g for g in scene.gauges if isinstance(g, ElevationGauge)]
+    assert (wg5.name, wg5.x) == ("WG5", pytest.approx(CHEN_CYLINDER["gauge_x"] - CHEN_OFFSET))
+    (force,) = [g for g in scene.gauges if isinstance(g, ForceGauge)]
+    assert force.structure == pile.name == "cylinder"
+    quick, _ = cy.cylinder_scene(dp, quick=True)
+    assert scene.until - quick.until == pytest.approx(
+        (cy.PERIODS_ANALYSED - cy.QUICK_PERIODS) * 1.22, abs=0.06)
+
+    # the records on a clock 7.3 s behind theirs, sampled every 0.03 s
+    period = 1.22
+    t = np.arange(9.0, 24.0, 0.03)
+    tf, ff = cy.chen_reference("force")
+    te, ee = cy.chen_reference("elevation")
+    fx, eta = np.interp(t + 7.3, tf, ff), np.interp(t + 7.3, te, ee)
+    start = 12.2
+    errors, details = cy.cylinder_metrics(t, fx, t, eta, start, period)
+    assert details["clock_shift"] == pytest.approx(7.3, abs=0.02)
+    assert abs(errors["force_amplitude"]) < 0.03 and abs(errors["height_wg5"]) < 0.03
+    assert abs(errors["phase"]) < 0.005 and errors["force_rms"] < 0.05
+    more, _ = cy.cylinder_metrics(t, 1.2 * fx, t, eta, start, period)
+    assert more["force_amplitude"] == pytest.approx(1.2 * (1.0 + errors["force_amplitude"]) - 1.0)
+    assert more["force_rms"] > 0.12
+    late, details_late = cy.cylinder_metrics(t, np.interp(t + 7.3 - 0.122, tf, ff), t, eta,
+                                             start, period)
+    assert late["phase"] == pytest.approx(-0.1, abs=0.01)
+    assert details_late["phase_error_deg"] == pytest.approx(-36.0, abs=3.0)
+    # a run that stopped before the window holds a wave: no errors
+    short = t < start + 1.0
+    none, _ = cy.cylinder_metrics(t[short], fx[short], t[short], eta[short], start, period)
+    assert all(v is None for v in none.values())

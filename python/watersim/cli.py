@@ -23,8 +23,8 @@ exits with code 2 and a one-line message naming the field; a run stopped by a st
 writes what it has and exits with code 1.
 
 The wave-flume cases ``flume2d``, ``kimmoun2d``, ``stansby2d``, ``bar2d``, ``solitary2d``,
-``seawall2d`` and ``flume3d`` (:mod:`watersim.flume_cases`) take the numerical parameters and
-dotted keys of their objects (``--set wave.height=0.06 --set paddle.order=1 --set
+``seawall2d``, ``flume3d`` and ``cylinder3d`` (:mod:`watersim.flume_cases`) take the numerical
+parameters and dotted keys of their objects (``--set wave.height=0.06 --set paddle.order=1 --set
 beach.slope=0.05``) and write
 ``summary.json``, ``gauges.csv`` and one ``velocity_NAME.csv`` per velocity probe or window
 (rewritten as the run goes, so an unstable run keeps its records; headers with units,

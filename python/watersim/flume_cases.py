@@ -1,5 +1,5 @@
 """Built-in wave-flume cases of ``watersim run``: flume2d, kimmoun2d, stansby2d, bar2d,
-solitary2d and flume3d.
+solitary2d, seawall2d, flume3d and cylinder3d.
 
 Each case is a function of the ``--set`` values that returns a checked
 :class:`~watersim.flume.FlumeScene`. Keys are the numerical parameters of
@@ -9,8 +9,8 @@ Each case is a function of the ``--set`` values that returns a checked
 ``beach.slope``, ``damping.length``, ... (``watersim run CASE --set bogus=1`` lists them). Gauge
 positions that follow from the wave (flume2d, flume3d) are recomputed from the values set.
 
-The defaults are coarse on purpose: each case runs in a few minutes on two cores (see
-:data:`FLUME_CASES` for each one's cost). They use ``coefsound = 10``
+The defaults are coarse on purpose: each runs in a few minutes on two cores (kimmoun2d about 15,
+cylinder3d, a 3D tank 1.5 m wide, about 30 CPU-minutes). They use ``coefsound = 10``
 (:data:`watersim.numerics.FLUME_CASE`, which halves the number of steps against the core's 20)
 and the other numerics of :mod:`watersim.numerics`. Refine with ``--set dp=...`` (and
 ``coefsound=20``).
@@ -36,6 +36,7 @@ import numpy as np
 from . import analysis as an
 from . import numerics as nm
 from . import wave_theory as wt
+from .bodies import Mesh
 from .checks import _positive
 from .errors import did_you_mean
 from .flume import (
@@ -53,12 +54,15 @@ from .flume import (
     elevation_gauges_between,
     lattice_dp,
 )
+from .flume.gauges import ForceGauge
 from .flume.paddles import PADDLE_TYPES, Paddle
 from .overrides import OverrideError, Overrides
 from .scenes import SceneBuilder
 
 __all__ = [
     "BEJI_BATTJES_GAUGES",
+    "CHEN_CYLINDER",
+    "CHEN_OFFSET",
     "FLUME_CASES",
     "HSIAO_LIN_GAUGES",
     "HSIAO_LIN_OFFSET",
@@ -110,6 +114,40 @@ HSIAO_LIN_BED: tuple[tuple[float, float], ...] = (
 in their frame above the 0.2 m deep floor: a 1:20 slope from x = 10 m, the seawall's front face
 (13.6-13.9 m), its crest 0.056 m above the still water (to 13.948 m) and its back face down to
 the 1:20 slope, which goes on behind the wall."""
+
+
+CHEN_WAVE: dict[str, float] = {"depth": 0.505, "height": 0.07, "period": 1.22}
+"""The regular wave of Chen et al. (2014) as REEF3D's tutorial "Non-Breaking Wave Forces" sets
+it up (``shared/validation/SOURCES.md`` section 11): still-water depth, height and period."""
+
+CHEN_CYLINDER: dict[str, float] = {"x": 7.5, "diameter": 0.25, "gauge_x": 5.0, "width": 3.0}
+"""The tutorial's vertical cylinder (axis at x = 7.5 m on the centre line of a 3 m wide tank),
+its elevation gauge (x = 5 m) and the tank's width, in the tutorial's frame [m]."""
+
+CHEN_OFFSET = 3.5
+"""The tutorial's x less the cylinder3d flume's x [m]: the paddle at rest stands at the
+tutorial's x = 3.5 m, 1.5 m (0.7 L) before the gauge and 4 m (1.8 L) before the cylinder: past
+the paddle's evanescent modes (``exp(-pi x / d)``, 1e-4 at the gauge) and as short a crossing as
+that allows (the tutorial's 7.5 m cost the wave height that a coarse 3D run loses per
+wavelength)."""
+
+
+def half_cylinder(x: float, radius: float, top: float, name: str, segments: int = 48) -> Mesh:
+    """A vertical half cylinder standing on the floor against the side wall y = 0: the half of
+    a pile at ``x`` [m] with ``radius`` [m] up to ``top`` [m] on the side y >= 0, a closed
+    triangle mesh (``segments`` facets around the half circle). With the wall y = 0 as the
+    plane of symmetry of a tank twice as wide, it carries half the pile's inline force."""
+    angles = np.linspace(0.0, np.pi, segments + 1)
+    ring = [(x + radius * float(np.cos(a)), radius * float(np.sin(a))) for a in angles]
+    n = len(ring)
+    vertices = [(px, py, 0.0) for px, py in ring] + [(px, py, top) for px, py in ring]
+    triangles: list[tuple[int, int, int]] = []
+    for i in range(n - 1):  # the curved face, outward
+        triangles += [(i, i + 1, n + i + 1), (i, n + i + 1, n + i)]
+    triangles += [(n - 1, 0, n), (n - 1, n, 2 * n - 1)]  # the flat face on y = 0
+    for i in range(1, n - 1):  # bottom (facing -z) and top (facing +z) half discs
+        triangles += [(0, i + 1, i), (n, n + i, n + i + 1)]
+    return Mesh(vertices=tuple(vertices), triangles=tuple(triangles), name=name)
 
 
 BEJI_BATTJES_FILES: dict[float, str] = {
@@ -465,6 +503,42 @@ def case_flume3d(s: _Settings) -> FlumeScene:
     return _finish(s, 5.0, wl, flume=flume, wave=wave, paddle=paddle, gauges=gauges, **num)
 
 
+def case_cylinder3d(s: _Settings) -> FlumeScene:
+    """Chen et al. (2014): the inline force of a regular wave on a vertical cylinder (3D), as
+    REEF3D's tutorial sets it up (:data:`CHEN_WAVE`, :data:`CHEN_CYLINDER`), with the flume's x
+    the tutorial's less :data:`CHEN_OFFSET` (3.5 m).
+
+    Half the tank by symmetry: the side wall y = 0 is the tutorial's centre line, the cylinder
+    a half cylinder against it (:func:`half_cylinder`, named ``cylinder``; its force gauge
+    reads half the pile's force), the other wall at the tutorial's 1.5 m (rounded to whole dp).
+    Flume 7.3 m long (the cylinder's axis at 4 m) with a 2.4 m (1.1 L) damping zone at the far
+    end; walls 0.8 m high and the cylinder as tall; second-order piston with a two-period ramp
+    and active absorption (the cylinder scatters part of each wave back to the paddle).
+    Gauges: ``WG5`` at the tutorial's x = 5 m, 0.15 m off the centre line. Numerics
+    :data:`watersim.numerics.LOW_DISSIPATION` (a non-breaking wave carried over two
+    wavelengths; its free-slip walls make the wall y = 0 a plane of symmetry).
+    dp = 0.505 / 10 = 0.0505 m (H/dp 1.39, D/dp 4.95); until = ramp + arrival at the cylinder
+    + 8 periods.
+    """
+    wave = s.apply("wave", RegularWave(height=CHEN_WAVE["height"], period=CHEN_WAVE["period"]))
+    paddle = s.paddle(Piston(order=2, ramp_periods=2.0, absorption=True))
+    depth = CHEN_WAVE["depth"]
+    num = s.numerics(dp=lattice_dp(depth, 0.0505), **nm.FLUME_CASE, **nm.LOW_DISSIPATION)
+    dp = float(num["dp"])
+    # the half width to whole dp (0.505 m has no divisor that also divides 1.5 m)
+    width = round(round(0.5 * CHEN_CYLINDER["width"] / dp) * dp, 9)
+    flume = Flume(length=7.3, depth=depth, width=width, height=0.8,
+                  damping=s.apply("damping", DampingZone(length=2.4)))
+    x_cylinder = CHEN_CYLINDER["x"] - CHEN_OFFSET
+    cylinder = half_cylinder(x_cylinder, 0.5 * CHEN_CYLINDER["diameter"], 0.8, "cylinder")
+    gauges: list[Any] = [
+        ElevationGauge(CHEN_CYLINDER["gauge_x"] - CHEN_OFFSET, y=0.15, name="WG5"),
+        ForceGauge("cylinder", point=(x_cylinder, 0.0, 0.0)),
+    ]
+    return _finish(s, 8.0, x_cylinder, flume=flume, wave=wave, paddle=paddle, gauges=gauges,
+                   structures=[cylinder], **num)
+
+
 @dataclass(frozen=True)
 class FlumeCase:
     """A built-in flume case: its one-line description and the function building it."""
@@ -484,6 +558,8 @@ FLUME_CASES: dict[str, FlumeCase] = {
     "seawall2d": FlumeCase("Hsiao & Lin (2010): breaking solitary wave over a seawall",
                            case_seawall2d),
     "flume3d": FlumeCase("narrow coarse 3D flume with a piston", case_flume3d),
+    "cylinder3d": FlumeCase("Chen et al. (2014): regular wave force on a vertical cylinder",
+                            case_cylinder3d),
 }
 """The built-in flume cases of ``watersim run``."""
 

@@ -15,6 +15,7 @@
 from __future__ import annotations
 
 from . import metrics
-from .cases import CASES, Case, StandingWaveTank, run_case
+from .case import Case
+from .cases import CASES, StandingWaveTank, run_case
 
 __all__ = ["CASES", "Case", "StandingWaveTank", "metrics", "run_case"]

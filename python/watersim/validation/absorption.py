@@ -31,7 +31,7 @@ from ..flume import (
 from .running import _Clock, advance, make_record
 
 if TYPE_CHECKING:
-    from .cases import Case
+    from .case import Case
 
 
 

@@ -23,9 +23,8 @@ from __future__ import annotations
 import functools
 import math
 import warnings
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
@@ -43,7 +42,6 @@ from ..flume import (
     FlumeSimulation,
     Piston,
     RegularWave,
-    lattice_dp,
 )
 from ..flume_cases import BEJI_BATTJES_FILES, _load_csv
 from ..measure import MARTIN_MOYCE_SETS, front_error, front_position, water_column_height
@@ -56,93 +54,22 @@ from .absorption import (
     _run_absorption,
 )
 from .buchner import BUCHNER_H, WALL_MODELS, plot_buchner, run_buchner
+from .case import Case
+from .cylinder import CYLINDER_CASE
 from .longflume import LONG_FLUME_WAVE, long_flume_scene, run_long_flume
 from .running import _Clock, _with_until, advance, flume_run, make_record, numerical_case_scene
-from .seawall import SEAWALL_DEPTH, SEAWALL_HEIGHT, plot_seawall, run_seawall, seawall_scene
+from .seawall import SEAWALL_CASE
 from .solitary import SOLITARY_DEPTH, SOLITARY_HEIGHT, SOLITARY_SLOPE, solitary_scene
 from .stansby import STANSBY_HEIGHT, run_stansby, stansby_scene
-from .yeh import plot_yeh, run_yeh
+from .yeh import YEH_CASE
 
 __all__ = ["CASES", "Case", "StandingWaveTank", "make_record", "run_case"]
-
-
-# ------------------------------------------------------------------------------------------------
-# Case
-
-
-@dataclass(frozen=True)
-class Case:
-    """A validation case.
-
-    Attributes:
-        name: the case's name (``watersim validate NAME``).
-        description: one line.
-        reference: where the reference comes from.
-        resolution_meaning: what the resolution counts, e.g. ``"column width / dp"``.
-        length: the characteristic length [m]: ``dp = length / resolution`` (snapped for the
-            wave flumes, see ``depth``).
-        resolutions: the full sweep's resolutions.
-        quick_resolutions: the ``--quick`` sweep's resolutions.
-        primary: the metric the accuracy target applies to.
-        target: the accuracy target of ``primary`` (an error at most this large meets it).
-        target_text: the target in words, for the report.
-        runner: ``runner(case, resolution, quick, progress) -> record``.
-        report_note: what the report should say about the case's metrics.
-        report_details: keys of the records' ``details`` the report tabulates.
-        depth: a wave flume's still-water depth [m], which dp must divide (:meth:`dp`); ``None``
-            for the other cases.
-        modules: optional packages (not WaterSim's own dependencies) the case imports, checked
-            before a sweep starts.
-        figure: ``figure(runs, path)`` draws the case's own measurements from its run records
-            into ``path`` (a PNG), shown in the report under the error plots; ``None``: none.
-    """
-
-    name: str
-    description: str
-    reference: str
-    resolution_meaning: str
-    length: float
-    resolutions: tuple[float, ...]
-    quick_resolutions: tuple[float, ...]
-    primary: str
-    target: float
-    target_text: str
-    runner: Callable[[Case, float, bool, bool], dict[str, Any]]
-    report_note: str = ""
-    report_details: tuple[str, ...] = ()
-    depth: float | None = None
-    modules: tuple[str, ...] = ()
-    figure: Callable[[Sequence[Mapping[str, Any]], Path], None] | None = None
-    scene: Callable[[float, Mapping[str, str]], tuple[FlumeScene, list[str]]] | None = None
-    """For a case that takes numerical ``--set`` items (``watersim validate --set``):
-    ``scene(dp, settings)`` builds its scene (and checks the items); its runner then takes the
-    items as a fifth argument. ``None``: the case takes none."""
-
-    @property
-    def settable(self) -> bool:
-        """Whether the case takes numerical ``--set`` items."""
-        return self.scene is not None
-
-    def dp(self, resolution: float) -> float:
-        """Particle spacing [m] of a resolution: ``length / resolution``, for a wave flume
-        snapped to ``depth / round(depth / dp)`` (:func:`~watersim.flume.lattice_dp`): the core
-        fills the water with whole particle layers, so only such a dp gives the flume the depth
-        its wave theory and paddle law are computed for (the resolution is then nominal, the
-        actual ``length / dp`` within half a layer's share of it)."""
-        dp = self.length / resolution
-        return dp if self.depth is None else lattice_dp(self.depth, dp)
-
-    def run(self, resolution: float, quick: bool = False, progress: bool = False) -> dict[str, Any]:
-        """Run the case at ``resolution``; returns the run record (never raises for a failed
-        simulation: the record's ``status`` says what happened)."""
-        return run_case(self.name, resolution, quick, progress)
 
 
 def run_case(name: str, resolution: float, quick: bool = False, progress: bool = False,
              settings: Mapping[str, str] | None = None) -> dict[str, Any]:
     """Run case ``name`` at ``resolution``: the run record (a module-level function, so that it
-    pickles for process pools and Dask workers). ``settings``: numerical ``--set`` items
-    (key -> text) for a case that takes them (:attr:`Case.settable`).
+    pickles for process pools and Dask workers); :meth:`Case.run` of ``CASES[name]``.
 
     Raises:
         ValueError: unknown case, a resolution that is not a positive number, or settings for
@@ -151,20 +78,10 @@ def run_case(name: str, resolution: float, quick: bool = False, progress: bool =
     if name not in CASES:
         raise ValueError(f"case: unknown validation case {name!r}; known: {', '.join(CASES)}")
     case = CASES[name]
-    _positive("resolution", resolution)
     if settings and not case.settable:
         raise ValueError(f"--set: {name} takes no settings (cases that do: "
                          f"{', '.join(c.name for c in CASES.values() if c.settable)})")
-    clock = _Clock()
-    try:
-        if case.settable:
-            return case.runner(case, float(resolution), quick, progress,  # type: ignore[call-arg]
-                               dict(settings or {}))
-        return case.runner(case, float(resolution), quick, progress)
-    except (SceneError, ValueError, RuntimeError, FloatingPointError) as exc:
-        # a case that cannot be built or measured at this resolution is a result, not a crash
-        return make_record(name, resolution, case.dp(resolution), None, clock.wall(), clock.cpu(),
-                           "error", f"{type(exc).__name__}: {exc}", {}, {})
+    return case.run(resolution, quick, progress, settings)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -1026,45 +943,9 @@ CASES: dict[str, Case] = {
                              "undertow_seaward_mean",
                              "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
              depth=0.34, scene=stansby_scene),
-        Case("seawall2d", "Hsiao & Lin (2010): breaking solitary wave (H/d = 0.35) "
-             "overtopping a seawall on a 1:20 slope",
-             "Hsiao & Lin (2010) gauge records (Basilisk's copy): elevation at WG1-WG22, "
-             "inundation depth at WG28-WG40",
-             "wave height / dp", SEAWALL_HEIGHT, (3.0, 5.0, 7.0), (2.0,), "gauge_rms", 0.10,
-             "gauge records within 10 % of H (RMS, mean over the seven gauges)", run_seawall,
-             "The built-in seawall2d (`watersim/validation/seawall.py`): d = 0.2 m, H = 0.07 m, "
-             "Goring's piston 3.9 m before WG1. The records' clock starts when the crest "
-             "passes WG1; the simulation's is set on its own crest there. `gauge_rms`: the "
-             "mean over the seven gauges of the RMS difference from the record at the "
-             "record's times, over H; `peak`: the RMS over the gauges of the difference of "
-             "the highest values, over H. WG28, WG37 and WG40 record the inundation depth "
-             "above the ground (the seawall's faces and the ground behind it); where a "
-             "simulated gauge is dry, its elevation is the ground's. "
-             "`details.overtopped_volume`: the volume per unit width that crossed the crest's "
-             "landward edge (no measured value in the records). The records of WG3, WG22, WG28, "
-             "WG37 and WG40 read 4-5 mm where the water is still or the ground dry (6-7 % of "
-             "H, an offset of the gauges or of the digitisation, left in). `--quick` runs 6 s "
-             "past WG1.",
-             report_details=("crest_height_wg1_error", "overtopped_volume", "t_crest_wg1"),
-             depth=SEAWALL_DEPTH, figure=plot_seawall, scene=seawall_scene),
-        Case("yeh3d", "Yeh & Petroff 3D dam break against a square column: force, velocity",
-             "Yeh & Petroff's records as digitised by Raad & Bidoae (2005) (PySPH's copy)",
-             "column width / dp", 0.12, (5.0, 6.0, 8.0), (5.0,), "force_peak", 0.15,
-             "first-impact force on the column within 15 % of the record's 33.1 N", run_yeh,
-             "Tank 1.6 x 0.61 x 0.4 m, water 0.4 m long and 0.3 m high against the back wall, "
-             "the record's 1 cm sheet over the rest of the floor as one particle layer (dp "
-             "thick), a 0.12 m square column at x = 0.96 m (`watersim/validation/yeh.py`), "
-             "DBC walls and the general scene's numerics, to 1.5 s (0.6 s with --quick). "
-             "`force_peak`: the largest Fx for t in [0.3, 0.6] s against the record's (the "
-             "simulated peak is a short acoustic spike, as in the Buchner cases); "
-             "`force_impulse`: the integral of Fx over that window against the record's; "
-             "`force_rms`: the RMS difference of Fx from the record up to the run's end, over "
-             "its peak; `velocity_rms`: the same for u at (0.814, 0.305, 0.026) m over its "
-             "peak (2.2 m/s), the simulated series put on the record's clock, which starts "
-             "when the bore reaches the probe (here: when the water over the probe first "
-             "stands 5 cm deep, above the sheet).",
-             report_details=("force_peak", "t_force_peak", "force_impulse", "t_bore_at_probe"),
-             figure=plot_yeh),
+        SEAWALL_CASE,
+        YEH_CASE,
+        CYLINDER_CASE,
         Case("absorption2d", "active absorption: regular wave (kd = 1, H/d = 0.1) against a "
              "vertical wall for 60 periods, piston and flap, absorption on and off; a solitary "
              "wave against the wall",

@@ -28,7 +28,7 @@ from . import metrics as m
 from .running import _Clock, make_record
 
 if TYPE_CHECKING:
-    from .cases import Case
+    from .case import Case
 
 LONG_FLUME_WAVE: dict[str, float] = {"depth": 0.3, "period": 1.2, "height": 0.1}
 """The wave of flume2d-long: flume2d's validation wave (L = 1.77 m, kd = 1.06, H/L = 0.056)."""

@@ -42,6 +42,7 @@ from ..flume.gauges import ElevationGauge, ForceGauge, VelocityProbe
 from ..flume_cases import _load_csv
 from ..scenes import FluidBlock, Scene
 from .buchner import pressure_impulse
+from .case import Case
 from .running import _Clock, advance, make_record
 
 YEH_TANK = (1.6, 0.61, 0.4)
@@ -204,3 +205,26 @@ def plot_yeh(runs: Sequence[Mapping[str, Any]], path: Path) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+YEH_CASE = Case(
+    "yeh3d", "Yeh & Petroff 3D dam break against a square column: force, velocity",
+    "Yeh & Petroff's records as digitised by Raad & Bidoae (2005) (PySPH's copy)",
+    "column width / dp", 0.12, (5.0, 6.0, 8.0), (5.0,), "force_peak", 0.15,
+    "first-impact force on the column within 15 % of the record's 33.1 N", run_yeh,
+    "Tank 1.6 x 0.61 x 0.4 m, water 0.4 m long and 0.3 m high against the back wall, "
+    "the record's 1 cm sheet over the rest of the floor as one particle layer (dp "
+    "thick), a 0.12 m square column at x = 0.96 m (`watersim/validation/yeh.py`), "
+    "DBC walls and the general scene's numerics, to 1.5 s (0.6 s with --quick). "
+    "`force_peak`: the largest Fx for t in [0.3, 0.6] s against the record's (the "
+    "simulated peak is a short acoustic spike, as in the Buchner cases); "
+    "`force_impulse`: the integral of Fx over that window against the record's; "
+    "`force_rms`: the RMS difference of Fx from the record up to the run's end, over "
+    "its peak; `velocity_rms`: the same for u at (0.814, 0.305, 0.026) m over its "
+    "peak (2.2 m/s), the simulated series put on the record's clock, which starts "
+    "when the bore reaches the probe (here: when the water over the probe first "
+    "stands 5 cm deep, above the sheet).",
+    report_details=("force_peak", "t_force_peak", "force_impulse", "t_bore_at_probe"),
+    figure=plot_yeh,
+)
+"""The ``watersim validate`` entry of yeh3d."""
