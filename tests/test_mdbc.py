@@ -27,7 +27,7 @@ def test_mdbc_walls_hold_still_water_hydrostatic(slip: str | None) -> None:
     scene = ws.Flume(length=0.8, depth=DEPTH).scene(
         ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.0)), dp=DP, until=0.1,
         sample_interval=0.01, boundary=nm.Mdbc(slip=slip),
-        structures=[ws.BoxStructure("block", *BOX)],
+        bodies=[ws.BoxStructure("block", *BOX)],
         gauges=[ws.ForceGauge(structure="block", point=(0.4, 0.18), interval=0.01)])
     assert scene.resolved_scene()["boundary"]["model"] == "mdbc"
     sim = scene.build()

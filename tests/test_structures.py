@@ -29,7 +29,7 @@ STILL = ws.TabulatedMotion(t=(0.0, 1.0), x=(0.0, 0.0))
 
 def _still_flume(**kwargs: object) -> ws.FlumeScene:
     args: dict[str, object] = {
-        "structures": [ws.BoxStructure("block", *BOX)],
+        "bodies": [ws.BoxStructure("block", *BOX)],
         "gauges": [ws.ForceGauge(structure="block", point=(0.4, 0.18), interval=0.01)],
     }
     args.update(kwargs)
@@ -101,13 +101,13 @@ type = "tabulated"
 t = [0.0, 1.0]
 x = [0.0, 0.0]
 
-[[structures]]
+[[bodies]]
 type = "box"
 name = "block"
 min = [0.3, 0.12]
 max = [0.5, 0.24]
 
-[[structures]]
+[[bodies]]
 type = "profile_structure"
 name = "seawall"
 x = [0.6, 0.7, 0.75]
@@ -129,7 +129,7 @@ point = [0.7, 0.0]
 def test_a_scene_file_builds_the_same_core_scene_as_python() -> None:
     builder = scenefile.loads(SCENE_FILE).builder
     python = _still_flume(
-        structures=[ws.BoxStructure("block", *BOX),
+        bodies=[ws.BoxStructure("block", *BOX),
                     ws.ProfileStructure("seawall", x=(0.6, 0.7, 0.75), z=(0.0, 0.5, 0.5))],
         gauges=[ws.ForceGauge(structure="block", point=(0.4, 0.18), interval=0.01),
                 ws.ForceGauge(structure="seawall", point=(0.7, 0.0))])
@@ -144,7 +144,7 @@ def test_a_scene_file_builds_the_same_core_scene_as_python() -> None:
 
 def test_the_obstacle_index_counts_the_beach() -> None:
     flume = ws.Flume(length=3.0, depth=0.3, beach=ws.PlaneBeach(toe=2.0, slope=0.1))
-    scene = flume.scene(STILL, dp=0.02, structures=[ws.BoxStructure("b", (1.0, 0.0),
+    scene = flume.scene(STILL, dp=0.02, bodies=[ws.BoxStructure("b", (1.0, 0.0),
                                                                     (1.2, 0.4))],
                         gauges=[ws.ForceGauge(structure="b", point=(1.0, 0.0))])
     core = scene.to_scene()
@@ -153,16 +153,16 @@ def test_the_obstacle_index_counts_the_beach() -> None:
 
 
 @pytest.mark.parametrize(("kwargs", "field"), [
-    ({"structures": [ws.BoxStructure("b", (0.6, 0.1), (0.9, 0.2))]}, r"structures\[0\]\.max"),
-    ({"structures": [ws.BoxStructure("b", (0.3, -0.1), (0.5, 0.2))]}, r"structures\[0\]\.min"),
-    ({"structures": [ws.BoxStructure("b", (0.01, 0.1), (0.2, 0.2))]}, r"structures\[0\]\.min"),
-    ({"structures": [ws.BoxStructure("b", (0.3, 0.1), (0.5, 0.13))]},
-     r"structures\[0\]\.max\[1\]"),
-    ({"structures": [ws.BoxStructure("b", (0.3, 0.1, 0.1), (0.5, 0.2, 0.2))]},
-     r"structures\[0\]\.min"),
-    ({"structures": [ws.ProfileStructure("w", (0.5, 0.52), (0.0, 0.3))]}, r"structures\[0\]\.x"),
-    ({"structures": [ws.BoxStructure("b", *BOX), ws.BoxStructure("b", (0.6, 0.1), (0.7, 0.2))]},
-     r"structures\[1\]\.name"),
+    ({"bodies": [ws.BoxStructure("b", (0.6, 0.1), (0.9, 0.2))]}, r"bodies\[0\]\.max"),
+    ({"bodies": [ws.BoxStructure("b", (0.3, -0.1), (0.5, 0.2))]}, r"bodies\[0\]\.min"),
+    ({"bodies": [ws.BoxStructure("b", (0.01, 0.1), (0.2, 0.2))]}, r"bodies\[0\]\.min"),
+    ({"bodies": [ws.BoxStructure("b", (0.3, 0.1), (0.5, 0.13))]},
+     r"bodies\[0\]\.max\[1\]"),
+    ({"bodies": [ws.BoxStructure("b", (0.3, 0.1, 0.1), (0.5, 0.2, 0.2))]},
+     r"bodies\[0\]\.min"),
+    ({"bodies": [ws.ProfileStructure("w", (0.5, 0.52), (0.0, 0.3))]}, r"bodies\[0\]\.x"),
+    ({"bodies": [ws.BoxStructure("b", *BOX), ws.BoxStructure("b", (0.6, 0.1), (0.7, 0.2))]},
+     r"bodies\[1\]\.name"),
     ({"gauges": [ws.ForceGauge(structure="pile", point=(0.4, 0.1))]},
      r"gauges\[0\]\.structure"),
     ({"gauges": [ws.ForceGauge(structure="block", point=(0.4, 0.1, 0.1))]},
@@ -192,7 +192,7 @@ def test_an_overtopping_gauge_counts_the_water_past_its_section(tmp_path: Path) 
     flume = ws.Flume(length=3.0, depth=0.2, height=0.5)
     scene = flume.scene(
         ws.SolitaryWave(height=0.1), dp=0.02, until=2.5,
-        structures=[ws.ProfileStructure("wall", x=(2.0, 2.2, 2.3), z=(0.0, 0.22, 0.22))],
+        bodies=[ws.ProfileStructure("wall", x=(2.0, 2.2, 2.3), z=(0.0, 0.22, 0.22))],
         gauges=[ws.OvertoppingGauge(x=2.3, name="q", interval=0.02)])
     sim = scene.build()
 
@@ -211,3 +211,35 @@ def test_an_overtopping_gauge_counts_the_water_past_its_section(tmp_path: Path) 
     analysis = ws.analyse_flume(scene, sim.gauges)
     (entry,) = analysis["overtopping"]
     assert entry["total"] == pytest.approx(volume[-1]) and entry["x"] == 2.3
+
+
+def test_a_flume_is_a_preset_of_the_general_scene() -> None:
+    """A flume takes what any scene takes: bodies, gauges and more water. A basin behind a
+    seawall, filled above the still water and below the crest, stands at rest; the gauge over
+    it reads its level above the SWL (its reading is not zeroed away); the core holds the
+    flume's still water and the basin as two fluid boxes. The flume makes its own tank."""
+    wall = ws.ProfileStructure("wall", x=(0.8, 0.84, 0.9, 0.94), z=(0.0, 0.3, 0.3, 0.0))
+    basin = ws.FluidBlock((0.88, 0.0), (1.4, 0.26))  # up to the wall's sloping back face
+    flume = ws.Flume(length=1.4, depth=0.2, height=0.4)
+    scene = flume.scene(STILL, dp=0.02, until=0.3, sample_interval=0.05, bodies=[wall],
+                        fluid=[basin], gauges=[ws.ElevationGauge(0.4, name="sea"),
+                                               ws.ElevationGauge(1.2, name="basin")])
+    assert isinstance(scene, ws.Scene)
+    assert scene.to_scene()["fluid"] == [{"min": [0.0, 0.0], "max": [1.4, 0.2]},
+                                         {"min": [0.88, 0.0], "max": [1.4, 0.26]}]
+    sim = scene.build()
+    behind = sim.fluid_positions()[:, 0] > 0.9
+    # the basin: 0.46 x 0.26 m behind the wall and 0.0045 m^2 under its back face
+    assert np.count_nonzero(behind) * 0.02**2 == pytest.approx(0.1241, rel=0.03)
+    sim.run()
+    gauges = sim.gauges
+    sea, level = gauges.elevation[:, 0], gauges.elevation[:, 1]
+    assert np.max(np.abs(sea)) < 0.005  # the sea stays at the SWL
+    assert np.allclose(level, 0.06, atol=0.012)  # the basin 6 cm above it
+    assert np.max(np.abs(sim.fluid_velocities()[behind])) < 0.05
+    with pytest.raises(ws.SceneError, match=r"^tank: a flume makes its own tank"):
+        flume.scene(STILL, dp=0.02, tank=(1.4, 0.4))
+    with pytest.raises(ws.SceneError, match=r"^fluid\[0\]\.max: the water spans"):
+        flume.scene(STILL, dp=0.02, fluid=[ws.FluidBlock((1.0, 0.0), (1.6, 0.26))])
+    with pytest.raises(ws.SceneError, match=r"^fluid\[0\]"):
+        flume.scene(STILL, dp=0.02, fluid=[ws.FillTo(0.3)])

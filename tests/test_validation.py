@@ -742,7 +742,7 @@ def test_cylinder3d_case_plumbing() -> None:
         scene = flume_builder("cylinder3d", {})
     dp = float(scene.dp)
     assert scene.flume.width == pytest.approx(round(1.5 / dp) * dp)
-    (pile,) = scene.structures
+    (pile,) = scene.bodies
     radius = 0.5 * CHEN_CYLINDER["diameter"]
     lo, hi = pile.bounds()
     x_pile = CHEN_CYLINDER["x"] - CHEN_OFFSET

@@ -9,7 +9,7 @@ refused when the particles are built. Coordinates are scene coordinates: (x, z) 
 (x, y, z) in 3D, z up.
 
 A body may carry a ``name``: a :class:`~watersim.ForceGauge` names the body it measures.
-:class:`~watersim.Scene` takes any of them in ``bodies``, a flume in ``structures``.
+:class:`~watersim.Scene` and its presets (the flume too) take any of them in ``bodies``.
 """
 
 from __future__ import annotations

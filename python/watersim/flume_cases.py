@@ -536,7 +536,7 @@ def case_cylinder3d(s: _Settings) -> FlumeScene:
         ForceGauge("cylinder", point=(x_cylinder, 0.0, 0.0)),
     ]
     return _finish(s, 8.0, x_cylinder, flume=flume, wave=wave, paddle=paddle, gauges=gauges,
-                   structures=[cylinder], **num)
+                   bodies=[cylinder], **num)
 
 
 @dataclass(frozen=True)

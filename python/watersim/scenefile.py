@@ -735,11 +735,14 @@ def _sections() -> Iterator[tuple[str, str, type, tuple[str, ...]]]:
     yield ('`type = "tank"` (top level)', "A preset of the general scene, as the dam break.",
            Tank, own)
     yield ('`type = "flume"` (top level)',
+           "A preset of the general scene: the flume makes the tank and the still water; "
+           "`bodies`, `gauges`, `sample_interval` and more `fluid` as there. "
            "The numerical fields are those of the dam break above, with the defaults below, "
            "except `energy_growth_limit`: the core's energy monitor does not run in a scene "
            "with a paddle, so a flume refuses it.",
            FlumeScene, tuple(n for n in base if n not in ("dim", "coefh", "boundary", "dp",
-                                                          "until")) + ("energy_growth_limit",))
+                                                          "until")) + ("energy_growth_limit",
+                                                                       "tank"))
     yield from _object_sections(FlumeScene, "", skip=tuple(nm.OPTION_CLASSES))
     yield ("`[output]`", "", OutputOptions, ())
 

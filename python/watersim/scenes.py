@@ -484,6 +484,10 @@ class Scene(SceneBuilder):
     """What the gauges' messages call the scene's extent."""
     BODIES: ClassVar[str] = "bodies"
     """The field holding the scene's bodies, for messages."""
+    FLUID_CLASSES: ClassVar[tuple[type, ...]] = (FluidBlock, FillTo)
+    """What ``fluid`` takes."""
+    BODY_CLASSES: ClassVar[tuple[type, ...]] = BODY_TYPES
+    """What ``bodies`` takes."""
 
     dim: int | None = None  # type: ignore[assignment]
     tank: tuple[float, ...] | None = None
@@ -503,9 +507,15 @@ class Scene(SceneBuilder):
                 _set(self, "dim", len(size))
         if self.dim is None:
             _set(self, "dim", 2)
-        for field, classes in (("fluid", (FluidBlock, FillTo)), ("bodies", BODY_TYPES),
+        for field, classes in (("fluid", self.FLUID_CLASSES), ("bodies", self.BODY_CLASSES),
                                ("gauges", SCENE_GAUGE_TYPES)):
             _models_of(self, field, classes)
+        names: set[str] = set()
+        for i, body in enumerate(self.bodies):
+            if body.name is not None:
+                if body.name in names:
+                    raise SceneError(f"bodies[{i}].name: duplicate body name {body.name!r}")
+                names.add(body.name)
         super().__post_init__()
 
     # -- the geometry a preset replaces ---------------------------------------------------------
@@ -533,7 +543,14 @@ class Scene(SceneBuilder):
                 raise SceneError(f"tank: {extent:g} m along axis {k} is less than 2 dp")
         if not self.fluid:
             raise SceneError("fluid: at least one FluidBlock or FillTo is needed")
-        for i, (f, (lo, hi)) in enumerate(zip(self.fluid, self.fluid_boxes(), strict=True)):
+        self._check_fluid_blocks(size, dp)
+        self._validate_contents()
+
+    def _check_fluid_blocks(self, size: tuple[float, ...], dp: float) -> None:
+        """Each of ``fluid`` inside the tank ``[0, size]`` and at least dp thick, or SceneError
+        naming ``fluid[i]`` and its field."""
+        for i, f in enumerate(self.fluid):
+            lo, hi = f.box(size)
             label = f"fluid[{i}]"
             if len(lo) != self.dim:
                 raise SceneError(f"{label}.min: a {self.dim}D scene needs {self.dim} "
@@ -547,20 +564,14 @@ class Scene(SceneBuilder):
                 if hi[k] - lo[k] < dp * (1.0 - 1e-9):
                     raise SceneError(f"{label}: the water is {hi[k] - lo[k]:g} m thick along "
                                      f"axis {k}, less than dp = {dp:g} m")
-        self._validate_contents()
 
     def _validate_contents(self) -> None:
         """The bodies (inside the tank, resolved, uniquely named) and the gauges."""
         dp = float(self.dp)  # type: ignore[arg-type]
         size = self.tank_size()
-        names: set[str] = set()
         for i, body in enumerate(self.bodies):
             body.check_in(int(self.dim), (0.0,) * len(size), size, dp,  # type: ignore[arg-type]
                           f"bodies[{i}]")
-            if body.name is not None:
-                if body.name in names:
-                    raise SceneError(f"bodies[{i}].name: duplicate body name {body.name!r}")
-                names.add(body.name)
         if self.sample_interval is not None:
             _positive("sample_interval", self.sample_interval)
         check_gauges(self, self.gauges)  # type: ignore[arg-type]

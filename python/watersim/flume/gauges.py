@@ -348,13 +348,16 @@ class ElevationGauge(_Gauge):
         finds where the kernel volume sum falls to 0.5, about 0.4 dp above the top particle
         row's nominal surface). Like a laboratory gauge zeroed in still water before the run,
         each gauge's reading at t = 0 is subtracted; gauges too shallow at rest (less than 3 dp
-        of water, or dry) take the median offset of the others (0 if none).
+        of water, or dry) and gauges over water that does not stand at the SWL at rest (a
+        ``fluid`` block of the scene: a reading more than dp off) take the median offset of the
+        others (0 if none).
         """
         n = len(gauges.names)
         if n == 0 or gauges.t.size == 0 or abs(gauges.t[0]) > 1e-12:
             return np.zeros(n)
         first = gauges.elevation_raw[0]
-        deep = (gauges.still_depth > 3.0 * float(gauges.setup.dp)) & np.isfinite(first)  # type: ignore[arg-type]
+        dp = float(gauges.setup.dp)  # type: ignore[arg-type]
+        deep = (gauges.still_depth > 3.0 * dp) & (np.abs(np.nan_to_num(first, nan=np.inf)) <= dp)
         if not np.any(deep):
             return np.zeros(n)
         fallback = float(np.median(first[deep]))
@@ -653,8 +656,8 @@ class RunupGauge(_Gauge):
 
 @dataclass(frozen=True)
 class ForceGauge(_Gauge):
-    """Force and moment of the fluid on a body (one of a :class:`~watersim.Scene`'s ``bodies``
-    or of a flume's ``structures``, by name): the sum over the body's wall
+    """Force and moment of the fluid on a body (one of the ``bodies`` of a
+    :class:`~watersim.Scene` or a preset, a flume too, by name): the sum over the body's wall
     particles of the opposites of their fluid neighbours' pair forces (pressure and viscosity),
     and its moment about ``point``. In 2D per unit width: N/m and N m/m, the moment about the
     y axis (``M_y = r_z F_x - r_x F_z``); in 3D N and N m about x, y and z.

@@ -16,9 +16,9 @@ from .. import numerics as nm
 from .. import wave_theory as wt
 from .._core import SceneError
 from ..checks import _positive
-from ..scenes import SceneBuilder
+from ..scenes import FluidBlock, Scene
 from .bed import BEACH_TYPES, Beach, DampingZone, _bed, _shoreline_segment
-from .checks import _TOL, _models_of, _set, expected
+from .checks import _TOL, _set, expected
 from .gauges import (
     RUNUP_OFFSET_DP,
     SCENE_GAUGE_TYPES,
@@ -139,9 +139,11 @@ class Flume:
 
 
 @dataclass(frozen=True, kw_only=True)
-class FlumeScene(SceneBuilder):
+class FlumeScene(Scene):
     """Everything about one flume run: the flume, the wave, the paddle, the gauges and every
-    numerical parameter (those of :class:`~watersim.SceneBuilder`).
+    numerical parameter (those of :class:`~watersim.SceneBuilder`). A preset of
+    :class:`~watersim.Scene`, as the dam break and the tank are: the flume makes the tank and
+    the still water, and it takes ``bodies``, more ``fluid`` and ``gauges`` like any scene.
 
     Build it with :meth:`Flume.scene` (or :meth:`Flume.simulation`, which also builds the
     particles). ``dim`` follows the flume (3 with a width). Defaults filled in when the scene is
@@ -162,9 +164,12 @@ class FlumeScene(SceneBuilder):
         paddle: :class:`Piston` (default) or :class:`Flap`.
         gauges: gauge objects, of any class of :data:`~watersim.flume.gauges.Gauge` (every
             gauge but the run-up gauge).
-        structures: fixed solid bodies in the flume (any body of :mod:`watersim.bodies` but the
-            half-space, or a :class:`ProfileStructure`), named for a force gauge: the core's
-            obstacles after the beach.
+        bodies: fixed solid bodies in the flume, the structures (any body of
+            :mod:`watersim.bodies` but the half-space, or a :class:`ProfileStructure`), named
+            for a force gauge: the core's obstacles after the beach.
+        fluid: water besides the still water up to ``flume.depth`` (which the flume fills
+            itself): :class:`~watersim.FluidBlock` boxes, for example a basin behind a seawall
+            or water standing on a beach; at rest at t = 0 like the rest.
         runup: ``True`` for an automatic run-up gauge along the beach, a :class:`RunupGauge`,
             ``False`` for none; ``None`` (default): automatic when the beach reaches the SWL.
         sample_interval: default sampling interval of the gauges [s].
@@ -185,7 +190,8 @@ class FlumeScene(SceneBuilder):
     wave: Wave
     paddle: Paddle = dataclasses.field(default_factory=Piston)
     gauges: Sequence[Gauge] = ()
-    structures: Sequence[Structure] = ()
+    bodies: Sequence[Structure] = ()  # type: ignore[assignment]
+    fluid: Sequence[FluidBlock] = ()  # type: ignore[assignment]
     runup: bool | RunupGauge | None = None
     sample_interval: float | None = None
 
@@ -196,12 +202,9 @@ class FlumeScene(SceneBuilder):
             raise SceneError(f"wave: expected {expected(WAVE_TYPES)}, got {self.wave!r}")
         if not isinstance(self.paddle, PADDLE_TYPES):
             raise SceneError(f"paddle: expected a Piston or a Flap, got {self.paddle!r}")
-        _models_of(self, "gauges", SCENE_GAUGE_TYPES)
-        names: set[str] = set()
-        for i, s in enumerate(_models_of(self, "structures", STRUCTURE_TYPES)):
-            if s.name is not None and s.name in names:
-                raise SceneError(f"structures[{i}].name: duplicate structure name {s.name!r}")
-            names.add(s.name)
+        if self.tank is not None:
+            raise SceneError("tank: a flume makes its own tank from `flume` (length, width, "
+                             "height); use watersim.Scene for another geometry")
         if self.runup is not None and not isinstance(self.runup, (bool, RunupGauge)):
             raise SceneError(f"runup: expected True, False, None or a RunupGauge, got "
                              f"{self.runup!r}")
@@ -234,8 +237,8 @@ class FlumeScene(SceneBuilder):
 
     PLACE: ClassVar[str] = "flume"
     """What the gauges' messages call the scene's extent."""
-    BODIES: ClassVar[str] = "structures"
-    """The field holding the scene's bodies, for messages."""
+    FLUID_CLASSES: ClassVar[tuple[type, ...]] = (FluidBlock,)
+    BODY_CLASSES: ClassVar[tuple[type, ...]] = STRUCTURE_TYPES
 
     def extent(self, axis: int) -> tuple[float, float]:
         """``(low, high)`` [m] of the water's extent along horizontal ``axis`` (0: x, from the
@@ -250,15 +253,25 @@ class FlumeScene(SceneBuilder):
         """The level elevations are measured from [m above the floor]: the still water's."""
         return self.flume.depth
 
-    def body_names(self) -> list[str]:
-        """The names of the named structures."""
-        return [s.name for s in self.structures if s.name is not None]
+    def tank_size(self) -> tuple[float, ...]:
+        """The flume's inner size from the paddle at rest [m]: (length, [width,] height)."""
+        flume = self.flume
+        if flume.width is None:
+            return (flume.length, self.tank_height)
+        return (flume.length, flume.width, self.tank_height)
+
+    def fluid_boxes(self) -> list[tuple[tuple[float, ...], tuple[float, ...]]]:
+        """The still water up to ``flume.depth``, then the ``fluid`` blocks."""
+        flume = self.flume
+        top = ((flume.length, flume.depth) if flume.width is None
+               else (flume.length, flume.width, flume.depth))
+        return [((0.0,) * len(top), top), *super().fluid_boxes()]
 
     def obstacle_index(self, structure: str) -> int | None:
         """The core's index of the obstacle of the structure named ``structure`` (the beach,
         if any, is obstacle 0), None if there is no such structure."""
         first = 0 if self.flume.beach is None else 1
-        for i, s in enumerate(self.structures):
+        for i, s in enumerate(self.bodies):
             if s.name == structure:
                 return first + i
         return None
@@ -330,8 +343,9 @@ class FlumeScene(SceneBuilder):
                 raise SceneError(
                     f"damping.length: the zone covers the whole flume (it starts at x = {x0:g} m)"
                 )
-        for i, structure in enumerate(self.structures):
-            check_structure(structure, self, f"structures[{i}]")
+        for i, structure in enumerate(self.bodies):
+            check_structure(structure, self, f"bodies[{i}]")
+        self._check_fluid_blocks(self.tank_size(), dp)
         names = check_gauges(self, self.gauges)
         runup = self.runup_gauge
         if runup is not None:
@@ -647,26 +661,21 @@ class FlumeScene(SceneBuilder):
 
     def _geometry(self) -> dict[str, Any]:
         flume = self.flume
-        height = self.tank_height
-        back = self.back_x
-        if self.dim == 2:
-            tank = {"min": [back, 0.0], "max": [flume.length, height]}
-            fluid = {"min": [0.0, 0.0], "max": [flume.length, flume.depth]}
-        else:
-            assert flume.width is not None
-            tank = {"min": [back, 0.0, 0.0], "max": [flume.length, flume.width, height]}
-            fluid = {"min": [0.0, 0.0, 0.0], "max": [flume.length, flume.width, flume.depth]}
+        size = [float(v) for v in self.tank_size()]
+        # the tank reaches behind the paddle's rest position for its backward stroke
+        tank = {"min": [self.back_x] + [0.0] * (len(size) - 1), "max": size}
         obstacles: list[dict[str, Any]] = []
         if flume.beach is not None:
             obstacles.append(flume.beach.to_core(self.bed_profile))
-        obstacles.extend(s.to_core() for s in self.structures)
+        obstacles.extend(s.to_core() for s in self.bodies)
         # the surface read two dp in front of the face: clear of the paddle's own particles
         probe = 2.0 * float(self.dp) if self.absorbs else None  # type: ignore[arg-type]
         paddle = self.paddle.to_core(self.law, flume.depth, probe, self.g)
         scene: dict[str, Any] = {
             "tank": tank,
             "obstacles": obstacles,
-            "fluid": [fluid],
+            "fluid": [{"min": [float(v) for v in lo], "max": [float(v) for v in hi]}
+                      for lo, hi in self.fluid_boxes()],
             "paddle": paddle,
             "gauges": self._gauge_specs(),
         }

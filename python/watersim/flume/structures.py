@@ -1,7 +1,7 @@
-"""Structures in the flume: fixed solid bodies (any body of :mod:`watersim.bodies`: a box, a
-cylinder, a convex polygon, a mesh, ...; and the flume's own :class:`ProfileStructure`, a
-seawall or breakwater standing on the floor) that a :class:`~watersim.flume.ForceGauge` measures
-the load on.
+"""Structures in the flume, a flume's ``bodies``: fixed solid bodies (any body of
+:mod:`watersim.bodies`: a box, a cylinder, a convex polygon, a mesh, ...; and the flume's own
+:class:`ProfileStructure`, a seawall or breakwater standing on the floor) that a
+:class:`~watersim.flume.ForceGauge` measures the load on.
 
 Each structure is one of the core's obstacles (``scene.obstacles``), sampled into wall particles
 of the scene's wall model; the flume fills only the lattice sites outside it with water. A
@@ -92,7 +92,7 @@ class ProfileStructure(_Body):
 
 
 Structure = Box | Sphere | Cylinder | Capsule | Polygon | Mesh | ProfileStructure
-"""The structures a :class:`~watersim.flume.FlumeScene` takes in its ``structures``: any
+"""The structures a :class:`~watersim.flume.FlumeScene` takes in its ``bodies``: any
 body of :mod:`watersim.bodies` but the half-space (a beach is the flume's ``beach``), or a
 :class:`ProfileStructure`."""
 
@@ -101,7 +101,7 @@ STRUCTURE_TYPES: tuple[type[_Body], ...] = typing.get_args(Structure)
 
 def check_structure(structure: _Body, scene: FlumeScene, label: str) -> None:
     """Refuse a structure outside the flume, in the paddle's travel or thinner than
-    :data:`watersim.bodies.RESOLVABLE_DP` dp, naming ``label`` (``structures[i]``) and the field."""
+    :data:`watersim.bodies.RESOLVABLE_DP` dp, naming ``label`` (``bodies[i]``) and the field."""
     flume = scene.flume
     lo = (0.0, 0.0, 0.0) if scene.dim == 3 else (0.0, 0.0)
     hi = ((flume.length, flume.width, scene.tank_height) if scene.dim == 3
