@@ -558,6 +558,19 @@ def test_stansby2d_case_plumbing() -> None:
     assert stansby_metrics(result)[1]["target_first_harmonic"] == pytest.approx(0.0525)
     empty_errors, _ = stansby_metrics({"gauges": []})
     assert set(empty_errors) == set(errors) and all(v is None for v in empty_errors.values())
+    # the crests' flux and what the undertow returns of it, at gauge 8 (5.54 m, d = 0.163 m)
+    depth = 0.34 - (5.54 - 2.0) / 20.0
+    linear = 9.81 * 0.12**2 / (8.0 * math.sqrt(9.81 * depth))
+    flux = {"gauges": [{"x": 5.54, "still_depth": depth, "H_mean": 0.12}],
+            "velocity_verticals": [{"name": "u_gauge8", "x": 5.54, "still_depth": depth,
+                                    "flux_above_trough": 0.5 * linear,
+                                    "flux_below_trough": -0.4 * linear},
+                                   {"name": "u_gauge13", "x": 7.2, "still_depth": 0.08,
+                                    "flux_above_trough": 1.0, "flux_below_trough": 0.0}]}
+    details = stansby_metrics(flux)[1]
+    assert details["crest_flux_return"] == pytest.approx(0.8)
+    assert details["crest_flux_over_linear"] == pytest.approx(0.5)
+    assert list(details["crest_flux_return_by_gauge"]) == ["8"]
 
 
 def test_long_flume_scene_and_its_settings() -> None:

@@ -938,9 +938,16 @@ CASES: dict[str, Case] = {
              "against the target wave's (the Fourier wave's 0.0443 m for the stream-function "
              "law): the generated wave without the partial standing wave of the beach's "
              "reflection, which moves the height at each flat-floor gauge by up to twice "
-             "`details.reflection_coefficient` (docs/wave-flume.md).",
+             "`details.reflection_coefficient` (docs/wave-flume.md). "
+             "`details.crest_flux_return`: the share of the crests' mean volume flux (above "
+             "the trough) that the undertow carries back (one at steady state in a closed "
+             "flume, Svendsen 1984); `details.crest_flux_over_linear`: the crests' flux over "
+             "the linear wave's g H^2 / (8 c) with the local H (surf-zone waves about half): "
+             "an undertow larger than Table 3's is what the crests' transport asks for when "
+             "these are near one and a half.",
              report_details=("H_flat", "incident_first_harmonic_error", "breaking_x",
-                             "undertow_seaward_mean",
+                             "undertow_seaward_mean", "crest_flux_return",
+                             "crest_flux_over_linear",
                              "celerity_ratio_surf", "crest_velocity_over_sqrt_gD_max"),
              depth=0.34, scene=stansby_scene),
         SEAWALL_CASE,

@@ -5,6 +5,7 @@ runner and the registry entry are in :mod:`watersim.validation.cases`)."""
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Mapping
 from importlib import resources
 from typing import Any
@@ -72,6 +73,35 @@ def _incident_wave(result: Mapping[str, Any]) -> dict[str, Any]:
             "reflection_coefficient": reflection.get("coefficient")}
 
 
+def _mass_transport(result: Mapping[str, Any]) -> dict[str, Any]:
+    """What the undertow carries back, on the verticals of Table 3's gauges: in a closed flume
+    at steady state the mean volume flux below the trough returns the crests' flux above it
+    (Svendsen 1984, Coastal Eng. 8, "Mass flux and undertow in a surf zone"), so
+    ``crest_flux_return`` = -(flux below) / (flux above), one at steady state; and the crests'
+    flux against the linear wave's ``g H^2 / (8 c)``, ``c = sqrt(g d)``, H the local mean
+    zero-crossing height (Svendsen's ``B0 = 1/8`` of a sine; the flatter-crested waves of a
+    surf zone have a smaller ``B0``, about half, and add their roller's share):
+    ``crest_flux_over_linear``. Means over the verticals, and per gauge. Together they say
+    whether an undertow is what the crests' transport asks for."""
+    g = 9.81
+    heights = {round(float(v["x"]), 6): v.get("H_mean") for v in result.get("gauges", [])}
+    ret: dict[str, float] = {}
+    lin: dict[str, float] = {}
+    for v in result.get("velocity_verticals", []):
+        gauge = int(v["name"].removeprefix("u_gauge"))
+        above, below = v.get("flux_above_trough"), v.get("flux_below_trough")
+        if gauge not in STANSBY_UNDERTOW_GAUGES or not above or below is None:
+            continue
+        ret[str(gauge)] = -below / above
+        height = heights.get(round(float(v["x"]), 6))
+        if height and v["still_depth"] > 0.0:
+            lin[str(gauge)] = above / (g * height**2 / (8.0 * math.sqrt(g * v["still_depth"])))
+    return {"crest_flux_return": float(np.mean(list(ret.values()))) if ret else None,
+            "crest_flux_return_by_gauge": ret,
+            "crest_flux_over_linear": float(np.mean(list(lin.values()))) if lin else None,
+            "crest_flux_over_linear_by_gauge": lin}
+
+
 def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
                                                         dict[str, Any]]:
     """stansby2d's errors and the values behind them, from its analysis.json (``result``);
@@ -105,6 +135,7 @@ def stansby_metrics(result: Mapping[str, Any]) -> tuple[dict[str, float | None],
             simulated[gauge] = -v["undertow"]
         if v.get("crest_velocity_over_sqrt_gD") is not None:
             crest_u[gauge] = v["crest_velocity_over_sqrt_gD"]
+    details.update(_mass_transport(result))
     # the largest phase-averaged u under the crest over sqrt(g d): another reading of the
     # seed's "maximum celerity ... 70~80 %" (which it draws from its velocity field, Fig. 4)
     details["crest_velocity_over_sqrt_gD"] = {str(n): crest_u[n] for n in sorted(crest_u)}
