@@ -765,7 +765,7 @@ def test_cylinder3d_case_plumbing() -> None:
     (wg5,) = [g for g in scene.gauges if isinstance(g, ElevationGauge)]
     assert (wg5.name, wg5.x) == ("WG5", pytest.approx(CHEN_CYLINDER["gauge_x"] - CHEN_OFFSET))
     (force,) = [g for g in scene.gauges if isinstance(g, ForceGauge)]
-    assert force.structure == pile.name == "cylinder"
+    assert force.structure == pile.name == "half_pile"
     quick, _ = cy.cylinder_scene(dp, quick=True)
     assert scene.until - quick.until == pytest.approx(
         (cy.PERIODS_ANALYSED - cy.QUICK_PERIODS) * 1.22, abs=0.06)

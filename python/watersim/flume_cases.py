@@ -509,7 +509,7 @@ def case_cylinder3d(s: _Settings) -> FlumeScene:
     the tutorial's less :data:`CHEN_OFFSET` (3.5 m).
 
     Half the tank by symmetry: the side wall y = 0 is the tutorial's centre line, the cylinder
-    a half cylinder against it (:func:`half_cylinder`, named ``cylinder``; its force gauge
+    a half cylinder against it (:func:`half_cylinder`, named ``half_pile``; its force gauge
     reads half the pile's force), the other wall at the tutorial's 1.5 m (rounded to whole dp).
     Flume 7.3 m long (the cylinder's axis at 4 m) with a 2.4 m (1.1 L) damping zone at the far
     end; walls 0.8 m high and the cylinder as tall; second-order piston with a two-period ramp
@@ -530,13 +530,13 @@ def case_cylinder3d(s: _Settings) -> FlumeScene:
     flume = Flume(length=7.3, depth=depth, width=width, height=0.8,
                   damping=s.apply("damping", DampingZone(length=2.4)))
     x_cylinder = CHEN_CYLINDER["x"] - CHEN_OFFSET
-    cylinder = half_cylinder(x_cylinder, 0.5 * CHEN_CYLINDER["diameter"], 0.8, "cylinder")
+    pile = half_cylinder(x_cylinder, 0.5 * CHEN_CYLINDER["diameter"], 0.8, "half_pile")
     gauges: list[Any] = [
         ElevationGauge(CHEN_CYLINDER["gauge_x"] - CHEN_OFFSET, y=0.15, name="WG5"),
-        ForceGauge("cylinder", point=(x_cylinder, 0.0, 0.0)),
+        ForceGauge("half_pile", point=(x_cylinder, 0.0, 0.0)),
     ]
     return _finish(s, 8.0, x_cylinder, flume=flume, wave=wave, paddle=paddle, gauges=gauges,
-                   bodies=[cylinder], **num)
+                   bodies=[pile], **num)
 
 
 @dataclass(frozen=True)
@@ -740,6 +740,14 @@ def headline(case: str, analysis: dict[str, Any]) -> list[str]:
         lines.append(f"  mean level at {mwl['gauge']}: spread {mwl['spread']:.4f} m "
                      f"({100 * mwl['spread_over_H']:.1f} % of H) over "
                      f"{len(mwl['block_means'])} blocks of {mwl['block_periods']} periods")
+    for f in analysis.get("forces") or []:
+        if f.get("Fx_max") is not None:
+            unit = "N/m" if analysis.get("dim") == 2 else "N"
+            significant = ("" if f.get("Fx_significant") is None
+                           else f", significant {f['Fx_significant']:.4g} {unit} over "
+                                f"{f['n_waves']} waves")
+            lines.append(f"  {f['name']}: Fx from {f['Fx_min']:.4g} to {f['Fx_max']:.4g} "
+                         f"{unit}{significant}")
     ru = analysis.get("runup") or {}
     if ru.get("mean") is not None:
         lines.append(f"  run-up: mean {ru['mean']:.4f} m, std {ru['std']:.4f} m over "

@@ -195,7 +195,7 @@ def analyse_flume(
 
     Keys:
 
-    - ``wave``: the wave and paddle (type, period, height, wavelength, stroke, ...).
+    - ``wave``: the wave and paddle (type, period, height, wavelength, stroke, ...); ``dim``.
     - ``gauges``: per elevation gauge: ``name``, ``x`` (``y``), ``still_depth``, ``window``,
       and zero-down-crossing ``H_mean``, ``H_max``, ``H_min``, ``H_rms``, ``T_mean``,
       ``n_waves``, ``crest_mean``, ``trough_mean``, ``mean_level`` (set-up); ``H_target`` and
@@ -246,7 +246,7 @@ def analyse_flume(
                regular=isinstance(setup.wave, RegularWave),
                irregular=isinstance(setup.wave, IrregularWave))
     result: dict[str, Any] = {
-        "wave": setup.describe(),
+        "wave": setup.describe(), "dim": setup.dim,
         "still_water_depth": run.depth,
         "record_end": run.end,
         "gauges": [],
