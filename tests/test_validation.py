@@ -252,6 +252,11 @@ def test_pareto_front_and_cheapest_run() -> None:
     assert [r["resolution"] for r in front] == [10, 20, 40]
     assert cheapest_meeting(runs, "pressure_rms", 0.025)["resolution"] == 20
     assert cheapest_meeting(runs, "pressure_rms", 0.001) is None
+    # a signed error counts by its size: -0.39 does not meet 0.10, -0.02 beats +0.05
+    signed = [_rec(1, 0.05, 1.0, -0.39), _rec(2, 0.04, 2.0, 0.05), _rec(3, 0.03, 4.0, -0.02)]
+    assert cheapest_meeting(signed, "pressure_rms", 0.10)["resolution"] == 2
+    assert [r["resolution"] for r in pareto_front(signed, "pressure_rms")] == [1, 2, 3]
+    assert cheapest_meeting(signed, "pressure_rms", 0.03)["resolution"] == 3
 
 
 def test_self_convergence_of_synthetic_fronts(tmp_path) -> None:

@@ -43,11 +43,13 @@ rising with dp."""
 
 
 def _error(record: Record, metric: str) -> float | None:
+    """The size of a run's error ``metric`` (a signed error, as cylinder3d's, compares by its
+    magnitude: targets, Pareto fronts and log axes), None when missing or not finite."""
     value = (record.get("errors") or {}).get(metric)
     if value is None:
         return None
     v = float(value)
-    return v if math.isfinite(v) else None
+    return abs(v) if math.isfinite(v) else None
 
 
 def ok_runs(records: Sequence[Record], metric: str) -> list[Record]:
