@@ -1,8 +1,9 @@
 """The general scene (issue 29 item 1): a tank, fluid blocks, bodies of every shape and gauges,
 in 2D and 3D; the dam break and the tank as its presets (their core scene unchanged); a
-submerged body of each shape feels its buoyancy in still water with DBC and Adami walls; bad
-input refused with the field named (a body outside the tank, a mesh that is not closed, a wall
-sensor away from every wall, fluid that bodies close off)."""
+submerged body of each shape feels its buoyancy in still water with DBC and Adami walls, and a
+body cut by a wall that is a plane of symmetry the buoyancy of its part in the tank; bad input
+refused with the field named (a body outside the tank, a mesh that is not closed, a wall sensor
+away from every wall, fluid that bodies close off)."""
 
 from __future__ import annotations
 
@@ -78,6 +79,27 @@ def test_a_submerged_cylinder_in_3d_feels_its_buoyancy(boundary: str) -> None:
     fz = record["force"][settled, 2].mean()
     buoyancy = 1000.0 * 9.81 * body.volume
     print(f"\ncylinder {boundary}: Fz / rho g V = {fz / buoyancy:.4f}")
+    assert abs(fz / buoyancy - 1.0) < 0.02
+
+
+@pytest.mark.parametrize("boundary", ["dbc", "adami", "mdbc"])
+def test_a_body_cut_by_a_plane_of_symmetry_feels_the_buoyancy_of_its_part_in_the_tank(
+        boundary: str) -> None:
+    """A box centred on the side wall y = 0 (the tank is half of one twice as wide): its force
+    sums the wall's particles inside it too, which stand for its mirror half that the fluid by
+    the wall pushes on (a box only touching the wall, its half, read 0.95 of its buoyancy with
+    Adami walls, the fluid's push on its mirror half falling to the wall)."""
+    body = ws.Box((0.18, -0.12, 0.14), (0.42, 0.12, 0.34), name="b")
+    with pytest.raises(ws.SceneError, match=r"^bodies\[0\]\.min: .* plane of symmetry"):
+        _still_tank(body, boundary, dim=3)
+    half = _still_tank(ws.Box((0.18, 0.0, 0.14), (0.42, 0.12, 0.34), name="b"), boundary, 3)
+    sim = half.replace(bodies=[body], symmetry_y_min=True).build()
+    sim.run(0.06)
+    record = sim.gauges.records["b"]
+    settled = record["t"] >= 0.02
+    fz = record["force"][settled, 2].mean()
+    buoyancy = 1000.0 * 9.81 * 0.24 * 0.12 * 0.2  # the part in the tank, y >= 0
+    print(f"\nbox on the wall y = 0, {boundary}: Fz / rho g V = {fz / buoyancy:.4f}")
     assert abs(fz / buoyancy - 1.0) < 0.02
 
 
@@ -182,6 +204,7 @@ def test_bad_bodies_are_refused_naming_the_field() -> None:
         (dict(gauges=[ws.ForceGauge("nothing", (0.4, 0.2))]), r"gauges\[0\]\.structure"),
         (dict(fluid=[ws.FluidBlock((0.0, 0.0), (0.9, 0.3))]), r"fluid\[0\]\.max"),
         (dict(fluid=[ws.FillTo(0.7)]), r"fluid\[0\]\.level"),
+        (dict(symmetry_y_min=True), "symmetry_y_min"),
     ]
     for kwargs, field in cases:
         args = dict(tank=(0.8, 0.6), dp=DP, fluid=[ws.FillTo(DEPTH)])

@@ -80,9 +80,10 @@ class _Body:
         raise NotImplementedError
 
     def check_in(self, dim: int, lo: tuple[float, ...], hi: tuple[float, ...], dp: float,
-                 label: str) -> None:
+                 label: str, symmetry_y_min: bool = False) -> None:
         """Refuse a body of the wrong dimension, outside the tank ``[lo, hi]`` (it may rise
-        above the walls' top ``hi[-1]``: the top is open) or thinner than
+        above the walls' top ``hi[-1]``: the top is open; and cross the wall y = ``lo[1]``
+        where that is a plane of symmetry, ``symmetry_y_min``) or thinner than
         :data:`RESOLVABLE_DP` dp, naming ``label`` (``bodies[i]``) and the field."""
         if dim not in self.DIMS:
             raise SceneError(f"{label}: a {type(self).__name__} exists in "
@@ -97,11 +98,15 @@ class _Body:
             for k in range(dim):
                 # the top is open: a body may rise above the walls
                 high = k < dim - 1 and box[1][k] > hi[k] + _TOL
-                if box[0][k] < lo[k] - _TOL or high:
-                    field = self.LOW if box[0][k] < lo[k] - _TOL else self.HIGH
+                crosses = k == 1 and symmetry_y_min and box[1][k] > lo[k] + _TOL
+                low = box[0][k] < lo[k] - _TOL and not crosses
+                if low or high:
+                    hint = (" (it may cross the wall y = 0 when that is a plane of symmetry, "
+                            "symmetry_y_min)" if low and k == 1 and dim == 3 else "")
                     raise SceneError(
-                        f"{label}.{field}: the body spans {axes[k]} = [{box[0][k]:.6g}, "
-                        f"{box[1][k]:.6g}] m, outside the tank [{lo[k]:g}, {hi[k]:g}] m")
+                        f"{label}.{self.LOW if low else self.HIGH}: the body spans {axes[k]} = "
+                        f"[{box[0][k]:.6g}, {box[1][k]:.6g}] m, outside the tank "
+                        f"[{lo[k]:g}, {hi[k]:g}] m{hint}")
         for name, size in self.thickness().items():
             if size < RESOLVABLE_DP * dp * (1.0 - 1e-9):
                 raise SceneError(f"{label}.{name}: the body is {size:.4g} m thick there, "

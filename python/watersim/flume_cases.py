@@ -36,7 +36,7 @@ import numpy as np
 from . import analysis as an
 from . import numerics as nm
 from . import wave_theory as wt
-from .bodies import Mesh
+from .bodies import Cylinder
 from .checks import _positive
 from .errors import did_you_mean
 from .flume import (
@@ -130,24 +130,6 @@ tutorial's x = 3.5 m, 1.5 m (0.7 L) before the gauge and 4 m (1.8 L) before the 
 the paddle's evanescent modes (``exp(-pi x / d)``, 1e-4 at the gauge) and as short a crossing as
 that allows (the tutorial's 7.5 m cost the wave height that a coarse 3D run loses per
 wavelength)."""
-
-
-def half_cylinder(x: float, radius: float, top: float, name: str, segments: int = 48) -> Mesh:
-    """A vertical half cylinder standing on the floor against the side wall y = 0: the half of
-    a pile at ``x`` [m] with ``radius`` [m] up to ``top`` [m] on the side y >= 0, a closed
-    triangle mesh (``segments`` facets around the half circle). With the wall y = 0 as the
-    plane of symmetry of a tank twice as wide, it carries half the pile's inline force."""
-    angles = np.linspace(0.0, np.pi, segments + 1)
-    ring = [(x + radius * float(np.cos(a)), radius * float(np.sin(a))) for a in angles]
-    n = len(ring)
-    vertices = [(px, py, 0.0) for px, py in ring] + [(px, py, top) for px, py in ring]
-    triangles: list[tuple[int, int, int]] = []
-    for i in range(n - 1):  # the curved face, outward
-        triangles += [(i, i + 1, n + i + 1), (i, n + i + 1, n + i)]
-    triangles += [(n - 1, 0, n), (n - 1, n, 2 * n - 1)]  # the flat face on y = 0
-    for i in range(1, n - 1):  # bottom (facing -z) and top (facing +z) half discs
-        triangles += [(0, i + 1, i), (n, n + i, n + i + 1)]
-    return Mesh(vertices=tuple(vertices), triangles=tuple(triangles), name=name)
 
 
 BEJI_BATTJES_FILES: dict[float, str] = {
@@ -508,9 +490,11 @@ def case_cylinder3d(s: _Settings) -> FlumeScene:
     REEF3D's tutorial sets it up (:data:`CHEN_WAVE`, :data:`CHEN_CYLINDER`), with the flume's x
     the tutorial's less :data:`CHEN_OFFSET` (3.5 m).
 
-    Half the tank by symmetry: the side wall y = 0 is the tutorial's centre line, the cylinder
-    a half cylinder against it (:func:`half_cylinder`, named ``half_pile``; its force gauge
-    reads half the pile's force), the other wall at the tutorial's 1.5 m (rounded to whole dp).
+    Half the tank by symmetry: the side wall y = 0 is the tutorial's centre line, a plane of
+    symmetry (``symmetry_y_min``) through the pile's axis (the pile, named ``half_pile``,
+    crosses it and owns the wall's particles inside it, which stand for its mirror half; its
+    force gauge reads half the pile's force), the other wall at the tutorial's 1.5 m (rounded
+    to whole dp).
     Flume 7.3 m long (the cylinder's axis at 4 m) with a 2.4 m (1.1 L) damping zone at the far
     end; walls 0.8 m high and the cylinder as tall; second-order piston with a two-period ramp
     and active absorption (the cylinder scatters part of each wave back to the paddle).
@@ -530,13 +514,14 @@ def case_cylinder3d(s: _Settings) -> FlumeScene:
     flume = Flume(length=7.3, depth=depth, width=width, height=0.8,
                   damping=s.apply("damping", DampingZone(length=2.4)))
     x_cylinder = CHEN_CYLINDER["x"] - CHEN_OFFSET
-    pile = half_cylinder(x_cylinder, 0.5 * CHEN_CYLINDER["diameter"], 0.8, "half_pile")
+    pile = Cylinder((x_cylinder, 0.0, 0.0), (x_cylinder, 0.0, 0.8), 0.5 * CHEN_CYLINDER["diameter"],
+                    name="half_pile")
     gauges: list[Any] = [
         ElevationGauge(CHEN_CYLINDER["gauge_x"] - CHEN_OFFSET, y=0.15, name="WG5"),
         ForceGauge("half_pile", point=(x_cylinder, 0.0, 0.0)),
     ]
     return _finish(s, 8.0, x_cylinder, flume=flume, wave=wave, paddle=paddle, gauges=gauges,
-                   bodies=[pile], **num)
+                   bodies=[pile], symmetry_y_min=True, **num)
 
 
 @dataclass(frozen=True)

@@ -474,6 +474,11 @@ class Scene(SceneBuilder):
             :class:`~watersim.OvertoppingGauge`.
         sample_interval: the gauges' sampling interval where a gauge gives none [s]; default
             ``until / 200``.
+        symmetry_y_min: the side wall y = 0 is a plane of symmetry (3D): the tank is half of
+            one mirrored through it. A body may cross that wall (a pile whose axis lies on
+            it); the wall's particles inside it are the body's and stand for its mirror half,
+            so its force gauge reads half the mirrored tank's force. Give the walls free slip
+            (:data:`watersim.numerics.LOW_DISSIPATION`); ``None``: an ordinary wall.
     """
 
     _DIM_DEFAULTS: ClassVar[Mapping[int, Mapping[str, Any]]] = {
@@ -495,6 +500,7 @@ class Scene(SceneBuilder):
     bodies: Sequence[Body] = ()
     gauges: Sequence[Gauge] = ()
     sample_interval: float | None = None
+    symmetry_y_min: bool | None = None
 
     def __post_init__(self) -> None:
         if self.tank is not None:
@@ -569,12 +575,31 @@ class Scene(SceneBuilder):
         """The bodies (inside the tank, resolved, uniquely named) and the gauges."""
         dp = float(self.dp)  # type: ignore[arg-type]
         size = self.tank_size()
+        symmetry = self._check_symmetry()
         for i, body in enumerate(self.bodies):
             body.check_in(int(self.dim), (0.0,) * len(size), size, dp,  # type: ignore[arg-type]
-                          f"bodies[{i}]")
+                          f"bodies[{i}]", symmetry)
         if self.sample_interval is not None:
             _positive("sample_interval", self.sample_interval)
         check_gauges(self, self.gauges)  # type: ignore[arg-type]
+
+    def _check_symmetry(self) -> bool:
+        """Whether the wall y = 0 is a plane of symmetry; SceneError naming
+        ``symmetry_y_min`` when it is not a bool or the scene not 3D."""
+        if self.symmetry_y_min is None:
+            return False
+        if not isinstance(self.symmetry_y_min, bool):
+            raise SceneError(f"symmetry_y_min: must be true or false, got "
+                             f"{self.symmetry_y_min!r}")
+        if self.symmetry_y_min and self.dim != 3:
+            raise SceneError("symmetry_y_min: a side wall y = 0 exists in 3D scenes only")
+        return self.symmetry_y_min
+
+    def _symmetry_to_core(self, scene: dict[str, Any]) -> dict[str, Any]:
+        """``scene`` (the core's JSON) with ``symmetry_y_min`` where it is set."""
+        if self.symmetry_y_min is not None:
+            scene["symmetry_y_min"] = self.symmetry_y_min
+        return scene
 
     # -- what the gauges ask of their scene ------------------------------------------------------
 
@@ -635,7 +660,7 @@ class Scene(SceneBuilder):
         }
         if self.gauges:
             scene["gauges"] = self._gauge_specs()
-        return scene
+        return self._symmetry_to_core(scene)
 
     def build(self) -> SceneSimulation:
         """Build the particles: a ready :class:`SceneSimulation`."""

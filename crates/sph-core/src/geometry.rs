@@ -112,9 +112,12 @@ fn solids<D: Dim>(scene: &Scene) -> Result<Vec<Solid<D>>> {
         .collect()
 }
 
-/// Which obstacle each of the fixed wall particles at `walls` was sampled from: the index of the
-/// first obstacle whose shell (`layers` thick inside its surface) holds it, as [`sample`]
-/// decides, or [`NO_BODY`] for the tank's walls (outside the tank's inner box) and the rest.
+/// Which obstacle each of the fixed wall particles at `walls` belongs to: the index of the
+/// first obstacle whose shell (`layers` thick inside its surface) holds it, or [`NO_BODY`].
+/// In the tank that is the obstacle [`sample`] sampled it from. Behind a side wall that is a
+/// plane of symmetry ([`Scene::symmetry_y_min`]) it is a particle of that wall inside a body
+/// crossing it: the fluid's pull on it is the pull on the body's mirror half, which the
+/// body's force in the mirrored tank holds.
 pub fn wall_bodies<D: Dim>(scene: &Scene, walls: &[D::V]) -> Result<Vec<u16>> {
     let solids = solids::<D>(scene)?;
     let thickness = scene.layers() as Real * scene.dp;
@@ -122,13 +125,14 @@ pub fn wall_bodies<D: Dim>(scene: &Scene, walls: &[D::V]) -> Result<Vec<u16>> {
     Ok(walls
         .iter()
         .map(|&p| {
-            let in_tank = (0..D::DIM).all(|k| p.get(k) >= tank_min.get(k) && p.get(k) <= tank_max.get(k));
+            let within = |k: usize| p.get(k) >= tank_min.get(k) && p.get(k) <= tank_max.get(k);
+            let behind_symmetry = scene.symmetry_y_min && p.get(1) < tank_min.get(1) && (0..D::DIM).all(|k| k == 1 || within(k));
             let shell = |s: &Solid<D>| {
                 let d = s.signed_distance(p);
                 d < 0.0 && d >= -thickness
             };
             match solids.iter().position(shell) {
-                Some(i) if in_tank && i < NO_BODY as usize => i as u16,
+                Some(i) if ((0..D::DIM).all(within) || behind_symmetry) && i < NO_BODY as usize => i as u16,
                 _ => NO_BODY,
             }
         })
@@ -688,6 +692,15 @@ mod tests {
         assert!(Scene::from_json(&tank_with(2, r#"{"shape": "box", "min": [0.4, 0], "max": [0.5, 0.9]}"#, "")).is_ok());
         let tilted = tank_with(3, r#"{"shape": "cylinder", "a": [0.1, 0.4, 0.1], "b": [0.9, 0.4, 0.1], "radius": 0.2}"#, "");
         assert_eq!(refusal(&tilted, false), "obstacles[0]");
+        // only the wall y = 0 that is a plane of symmetry may be crossed, and only in 3D
+        let on_y0 = r#"{"shape": "box", "min": [0.4, -0.1, 0], "max": [0.5, 0.1, 0.9]}"#;
+        assert_eq!(refusal(&tank_with(3, on_y0, ""), false), "obstacles[0]");
+        assert!(Scene::from_json(&tank_with(3, on_y0, r#", "symmetry_y_min": true"#)).is_ok());
+        let beyond_y0 = r#"{"shape": "box", "min": [0.4, -0.3, 0], "max": [0.5, -0.1, 0.9]}"#;
+        assert_eq!(refusal(&tank_with(3, beyond_y0, r#", "symmetry_y_min": true"#), false), "obstacles[0]");
+        let on_far_wall = r#"{"shape": "box", "min": [0.4, 0.7, 0], "max": [0.5, 0.9, 0.9]}"#;
+        assert_eq!(refusal(&tank_with(3, on_far_wall, r#", "symmetry_y_min": true"#), false), "obstacles[0]");
+        assert_eq!(refusal(&tank_with(2, "", r#", "symmetry_y_min": true"#), false), "symmetry_y_min");
         let concave = tank_with(2, r#"{"shape": "polygon", "vertices": [[0.2, 0], [0.8, 0], [0.5, 0.1], [0.5, 0.4]]}"#, "");
         assert_eq!(refusal(&concave, false), "obstacles[0].vertices");
         let flat_cylinder = tank_with(2, r#"{"shape": "cylinder", "a": [0.5, 0.1], "b": [0.5, 0.3], "radius": 0.1}"#, "");
@@ -701,6 +714,24 @@ mod tests {
         assert!(Scene::from_json(&mesh(closed)).is_ok());
         assert_eq!(refusal(&mesh(open), false), "obstacles[0].triangles");
         assert_eq!(refusal(&mesh(flipped), false), "obstacles[0].triangles");
+    }
+
+    #[test]
+    fn a_body_crossing_a_plane_of_symmetry_owns_the_wall_particles_inside_it() {
+        // a pile whose axis lies on the side wall y = 0: that wall's particles inside its shell
+        // are its own, and none of the floor's under it
+        let pile = r#"{"shape": "cylinder", "a": [0.5, 0, 0], "b": [0.5, 0, 0.8], "radius": 0.1}"#;
+        let s = scene(&tank_with(3, pile, r#", "symmetry_y_min": true"#));
+        let walls = sample::<Dim3>(&s).expect("sampled").walls;
+        let owner = wall_bodies::<Dim3>(&s, &walls).expect("bodies");
+        let thickness = s.layers() as Real * s.dp;
+        for (p, &b) in walls.iter().zip(&owner) {
+            let r = ((p.x - 0.5).powi(2) + p.y * p.y).sqrt();
+            let depth = (0.1 - r).min(p.z).min(0.8 - p.z);
+            let expected = depth > 0.0 && depth <= thickness;
+            assert_eq!(b == 0, expected, "wall particle at {p:?}");
+        }
+        assert!(walls.iter().zip(&owner).any(|(p, &b)| b == 0 && p.y < 0.0));
     }
 
     #[test]

@@ -343,6 +343,7 @@ class FlumeScene(Scene):
                 raise SceneError(
                     f"damping.length: the zone covers the whole flume (it starts at x = {x0:g} m)"
                 )
+        self._check_symmetry()
         for i, structure in enumerate(self.bodies):
             check_structure(structure, self, f"bodies[{i}]")
         self._check_fluid_blocks(self.tank_size(), dp)
@@ -682,7 +683,7 @@ class FlumeScene(Scene):
         zone = self.damping_zone
         if zone is not None:
             scene["damping"] = {"x_start": zone[0], "x_end": flume.length, "strength": zone[1]}
-        return scene
+        return self._symmetry_to_core(scene)
 
     def build(self) -> FlumeSimulation:  # type: ignore[override]
         """Build the particles: a ready :class:`FlumeSimulation`."""

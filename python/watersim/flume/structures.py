@@ -72,8 +72,8 @@ class ProfileStructure(_Body):
         return None
 
     def check_in(self, dim: int, lo: tuple[float, ...], hi: tuple[float, ...], dp: float,
-                 label: str) -> None:
-        super().check_in(dim, lo, hi, dp, label)
+                 label: str, symmetry_y_min: bool = False) -> None:
+        super().check_in(dim, lo, hi, dp, label, symmetry_y_min)
         if self.x[0] < lo[0] - _TOL or self.x[-1] > hi[0] + _TOL:
             raise SceneError(f"{label}.x: the structure spans x = [{self.x[0]:.6g}, "
                              f"{self.x[-1]:.6g}] m; it must lie within [{lo[0]:g}, {hi[0]:g}] m")
@@ -107,7 +107,8 @@ def check_structure(structure: _Body, scene: FlumeScene, label: str) -> None:
     hi = ((flume.length, flume.width, scene.tank_height) if scene.dim == 3
           else (flume.length, scene.tank_height))
     dp = float(scene.dp)  # type: ignore[arg-type]
-    structure.check_in(scene.dim, lo, hi, dp, label)  # type: ignore[arg-type]
+    structure.check_in(scene.dim, lo, hi, dp, label,  # type: ignore[arg-type]
+                       bool(scene.symmetry_y_min))
     start = structure.x_start()
     reach = scene.law.forward + 2.0 * dp
     if start is not None and start < reach:

@@ -163,7 +163,7 @@ def run_cylinder(case: Any, res: float, quick: bool, progress: bool,
     gauges = sim.gauges
     force = gauges.records["half_pile"]
     t_force = np.asarray(force["t"], dtype=np.float64)
-    # the half cylinder carries half the pile's inline force
+    # the tank is half of one mirrored through y = 0: the gauge reads half the pile's force
     fx = 2.0 * np.asarray(force["force"], dtype=np.float64).reshape(t_force.size, -1)[:, 0]
     eta = gauges.elevation[:, list(gauges.names).index("WG5")]
     errors, details = cylinder_metrics(t_force, fx, gauges.t, eta, analysis_start(scene),
@@ -203,16 +203,17 @@ CYLINDER_CASE = Case(
     "tutorial copy)",
     "wave height / dp", CHEN_WAVE["height"], (1.2, 1.4, 1.7), (1.2,), "force_amplitude", 0.10,
     "inline force amplitude within 10 % of the record's", run_cylinder,
-    "The built-in cylinder3d (`watersim/validation/cylinder.py`): H = 0.07 m, T = 1.22 s, "
-    "d = 0.505 m, a 0.25 m pile 4 m from the piston (at the tutorial's x = 7.5 m), half the "
-    "tutorial's 3 m wide tank by symmetry (a half cylinder against a free-slip side wall, its "
-    "force doubled), the low-dissipation numerics. `force_amplitude`: half the mean "
-    "zero-up-crossing height of Fx over six periods from two periods after the front "
-    "reaches the pile (three with --quick), against the record's; `height_wg5`: the mean "
-    "height at the gauge (x = 5 m) against the record's, the wave the pile meets; `phase`: the "
-    "force's first-harmonic phase relative to the gauge's against the record's, in periods; "
-    "`force_rms`: the RMS difference of Fx from the record with the run's clock set on the "
-    "gauge's phase, over the record's first-harmonic amplitude (30.5 N).",
+    "The built-in cylinder3d (`watersim/validation/cylinder.py`): H = 0.07 m, T = 1.22 s, d = "
+    "0.505 m, a 0.25 m pile 4 m from the piston (at the tutorial's x = 7.5 m), half the "
+    "tutorial's 3 m wide tank by symmetry (the free-slip side wall y = 0 a plane of symmetry "
+    "through the pile's axis, `symmetry_y_min`, the force doubled), the low-dissipation "
+    "numerics. `force_amplitude`: half the mean zero-up-crossing height of Fx over six periods "
+    "from two periods after the front reaches the pile (three with --quick), against the "
+    "record's; `height_wg5`: the mean height at the gauge (x = 5 m) against the record's, the "
+    "wave the pile meets; `phase`: the force's first-harmonic phase relative to the gauge's "
+    "against the record's, in periods; `force_rms`: the RMS difference of Fx from the record "
+    "with the run's clock set on the gauge's phase, over the record's first-harmonic amplitude "
+    "(30.5 N).",
     report_details=("force_amplitude", "force_amplitude_recorded", "height_wg5",
                     "phase_error_deg"),
     depth=CHEN_WAVE["depth"], figure=plot_cylinder, scene=cylinder_scene,

@@ -1,6 +1,8 @@
 //! The force of the fluid on a solid body and its moment ([`super::GaugeSpec::Force`]).
 //!
-//! The body is the set of fixed wall particles sampled from one obstacle. Each of them feels,
+//! The body is the set of fixed wall particles of one obstacle
+//! ([`crate::geometry::wall_bodies`]: those sampled from it, and those of a side wall that is
+//! a plane of symmetry inside it where it crosses that wall). Each of them feels,
 //! from each fluid neighbour `a`, the opposite of the pair force the fluid particle feels from
 //! it in the momentum equation (Monaghan 1992, with the scene's viscosity; see
 //! [`crate::physics::forces::fluid_forces_scalar`]):

@@ -88,6 +88,15 @@ pub struct Scene {
     pub kernel_correction: Option<KernelCorrection>,
     /// Inner faces of the tank (floor and side walls; the top is open).
     pub tank: BoxSpec,
+    /// The side wall `y = tank.min[1]` is a plane of symmetry (3D): the tank is half of one
+    /// mirrored through it. A body may then cross that wall (a pile whose axis lies on it);
+    /// the wall's particles inside the body's shell are the body's, standing for its mirror
+    /// half, so that its force is the pull of the fluid in the tank on the whole body, half the
+    /// mirrored tank's force (`geometry::wall_bodies`). The wall stays a wall of the scene's
+    /// wall model: give it free slip (inviscid walls) for a plane of symmetry. Left out of the
+    /// scene's JSON when false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub symmetry_y_min: bool,
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,
     /// Fluid boxes, initialised hydrostatically from each box's top.

@@ -311,6 +311,9 @@ impl Scene {
     fn validate_geometry(&self) -> Result<()> {
         let dim = self.dim;
         check_box("tank", &self.tank, dim)?;
+        if self.symmetry_y_min && dim != 3 {
+            return Err(Error::invalid("symmetry_y_min", "a side wall y = tank.min[1] exists in 3D scenes only"));
+        }
         // a thousandth of dp: no lattice site tells it apart, and a mesh read from f32 (binary
         // STL) rounds its vertices by more than 1e-9 dp
         let tol = 1e-3 * self.dp;
@@ -320,12 +323,21 @@ impl Scene {
             if let Some((lo, hi)) = o.bounds(dim) {
                 // the top is open: a body may rise above the walls (DualSPHysics' CaseDambreak
                 // column does)
-                let out = |k: usize| lo[k] < self.tank.min[k] - tol || (k + 1 < dim && hi[k] > self.tank.max[k] + tol);
+                // it may cross the side wall y = tank.min[1] that is a plane of symmetry
+                let crosses_symmetry = |k: usize| k == 1 && self.symmetry_y_min && hi[k] > self.tank.min[k] + tol;
+                let out = |k: usize| {
+                    (lo[k] < self.tank.min[k] - tol && !crosses_symmetry(k)) || (k + 1 < dim && hi[k] > self.tank.max[k] + tol)
+                };
                 if let Some(k) = (0..dim).find(|&k| out(k)) {
+                    let hint = if k == 1 && dim == 3 && lo[k] < self.tank.min[k] - tol && !self.symmetry_y_min {
+                        " (it may cross the wall y = tank.min[1] when that is a plane of symmetry, symmetry_y_min)"
+                    } else {
+                        ""
+                    };
                     return Err(Error::invalid(
                         f,
                         format!(
-                            "the body spans [{}, {}] along axis {k}, outside the tank [{}, {}]",
+                            "the body spans [{}, {}] along axis {k}, outside the tank [{}, {}]{hint}",
                             lo[k], hi[k], self.tank.min[k], self.tank.max[k]
                         ),
                     ));
