@@ -125,14 +125,17 @@ pub fn wall_bodies<D: Dim>(scene: &Scene, walls: &[D::V]) -> Result<Vec<u16>> {
     Ok(walls
         .iter()
         .map(|&p| {
-            let within = |k: usize| p.get(k) >= tank_min.get(k) && p.get(k) <= tank_max.get(k);
-            let behind_symmetry = scene.symmetry_y_min && p.get(1) < tank_min.get(1) && (0..D::DIM).all(|k| k == 1 || within(k));
+            // inside the tank, or behind its plane of symmetry y = min (and inside along the rest)
+            let owned = (0..D::DIM).all(|k| {
+                let behind_symmetry = k == 1 && scene.symmetry_y_min && p.get(1) < tank_min.get(1);
+                behind_symmetry || (p.get(k) >= tank_min.get(k) && p.get(k) <= tank_max.get(k))
+            });
             let shell = |s: &Solid<D>| {
                 let d = s.signed_distance(p);
                 d < 0.0 && d >= -thickness
             };
             match solids.iter().position(shell) {
-                Some(i) if ((0..D::DIM).all(within) || behind_symmetry) && i < NO_BODY as usize => i as u16,
+                Some(i) if owned && i < NO_BODY as usize => i as u16,
                 _ => NO_BODY,
             }
         })

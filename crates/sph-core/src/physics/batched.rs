@@ -135,6 +135,8 @@ fn sum_batch<F: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8, co
     // Lets the compiler drop the loops' bounds checks; with them it keeps a scalar epilogue of
     // a whole register of pairs, run on every batch.
     assert!(n_pad <= BATCH);
+    #[cfg(feature = "flop-count")]
+    super::flop_count::add_lanes(n_pad);
     // Padding: the particle itself at r = 0, masked in the arithmetic loop.
     for k in n..n_pad {
         s.idx[k] = own.slot as u32;
@@ -542,6 +544,21 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
     drho: &mut [Real],
     avx2: bool,
 ) -> StepLimits {
+    forces_in::<f32, f64, D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho, avx2)
+}
+
+/// [`fluid_forces_variant`] with `S` and `W` for the single- and double-precision pair float
+/// types (f32 and f64; the counting types of `flop_count.rs` for the roofline).
+#[allow(clippy::too_many_arguments)]
+fn forces_in<S: PairFloat, W: PairFloat, D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+    avx2: bool,
+) -> StepLimits {
     assert!(VISC != VISC_LAMINAR_SPS, "the SPS closure uses fluid_forces_scalar");
     assert!(!avx2 || uses_avx2(), "the AVX2 variant needs a CPU with AVX2");
     // What the unchecked gather and the AVX2 scan's loads rely on, checked here once per call
@@ -566,10 +583,10 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
     macro_rules! for_precision {
         ($tens:expr) => {
             match (c.pair_f32, seventh_power(c)) {
-                (false, true) => forces_for_gamma::<f64, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
-                (false, false) => forces_for_gamma::<f64, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
-                (true, true) => forces_for_gamma::<f32, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
-                (true, false) => forces_for_gamma::<f32, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (false, true) => forces_for_gamma::<W, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (false, false) => forces_for_gamma::<W, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (true, true) => forces_for_gamma::<S, D, K, VISC, DIFF, true, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
+                (true, false) => forces_for_gamma::<S, D, K, VISC, DIFF, false, { $tens }>(c, kernel, grid, f, acc, drho, avx2),
             }
         };
     }
@@ -577,9 +594,9 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
     // both), so it compiles two loops per kernel, not eight.
     if const { DIFF == DIFF_RIEMANN } {
         return if seventh_power(c) {
-            forces_for_gamma::<f64, D, K, VISC, DIFF, true, false>(c, kernel, grid, f, acc, drho, avx2)
+            forces_for_gamma::<W, D, K, VISC, DIFF, true, false>(c, kernel, grid, f, acc, drho, avx2)
         } else {
-            forces_for_gamma::<f64, D, K, VISC, DIFF, false, false>(c, kernel, grid, f, acc, drho, avx2)
+            forces_for_gamma::<W, D, K, VISC, DIFF, false, false>(c, kernel, grid, f, acc, drho, avx2)
         };
     }
     // The tensile correction (`tensile.rs`), the kernel's constant first: a kernel without the
@@ -589,6 +606,22 @@ pub(crate) fn fluid_forces_variant<D: Dim, K: Kernel, const VISC: u8, const DIFF
     } else {
         for_precision!(false)
     }
+}
+
+/// [`fluid_forces_batched`] with pair floats that count their operations (`flop_count.rs`):
+/// the same pairs, batches, padding and arithmetic as the loop a scene runs. The portable
+/// variant; the AVX2 one does the same operations in the same order.
+#[cfg(feature = "flop-count")]
+pub(crate) fn fluid_forces_counted<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(
+    c: &Constants,
+    kernel: &K,
+    grid: &CellGrid<D>,
+    f: Fields<'_, D>,
+    acc: &mut [D::V],
+    drho: &mut [Real],
+) -> StepLimits {
+    use super::flop_count::Counted;
+    forces_in::<Counted<f32>, Counted<f64>, D, K, VISC, DIFF>(c, kernel, grid, f, acc, drho, false)
 }
 
 /// [`fluid_forces_variant`] with the pair float type `F`, `T7` = "gamma is 7" and the tensile

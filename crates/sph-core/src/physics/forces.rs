@@ -151,6 +151,36 @@ pub fn fluid_force_loop<D: Dim, K: Kernel>(
     }
 }
 
+/// [`fluid_force_loop`]'s batched loop with pair floats that count their operations
+/// (`flop_count.rs`), for the scenes that run the batched loop; `None` for those that run the
+/// pair-at-a-time loop (the SPS closure, the kernel correction), which nothing counts.
+#[cfg(feature = "flop-count")]
+pub fn counted_force_loop<D: Dim, K: Kernel>(
+    viscosity: &Viscosity,
+    diffusion: &Diffusion,
+    riemann: Option<&RiemannSolver>,
+    kernel_correction: bool,
+) -> Option<FluidForceLoop<D, K>> {
+    use super::batched::fluid_forces_counted as counted;
+    use super::VISC_LAMINAR;
+    let visc = match viscosity {
+        Viscosity::LaminarSps { .. } => return None,
+        _ if kernel_correction => return None,
+        Viscosity::Artificial { .. } => VISC_ARTIFICIAL,
+        Viscosity::Laminar { .. } => VISC_LAMINAR,
+    };
+    Some(match (visc, riemann.is_some(), diffusion) {
+        (VISC_LAMINAR, true, _) => counted::<D, K, VISC_LAMINAR, DIFF_RIEMANN>,
+        (VISC_ARTIFICIAL, false, Diffusion::None) => counted::<D, K, VISC_ARTIFICIAL, DIFF_NONE>,
+        (VISC_ARTIFICIAL, false, Diffusion::Molteni { .. }) => counted::<D, K, VISC_ARTIFICIAL, DIFF_MOLTENI>,
+        (VISC_ARTIFICIAL, false, Diffusion::Fourtakas { .. }) => counted::<D, K, VISC_ARTIFICIAL, DIFF_FOURTAKAS>,
+        (_, false, Diffusion::None) => counted::<D, K, VISC_LAMINAR, DIFF_NONE>,
+        (_, false, Diffusion::Molteni { .. }) => counted::<D, K, VISC_LAMINAR, DIFF_MOLTENI>,
+        (_, false, Diffusion::Fourtakas { .. }) => counted::<D, K, VISC_LAMINAR, DIFF_FOURTAKAS>,
+        (_, true, _) => unreachable!("a validated scene has no artificial viscosity with riemann"),
+    })
+}
+
 /// Continuity and momentum for fluid particles: the batched (SIMD) loop of `batched.rs` for the
 /// artificial and laminar viscosity models, [`fluid_forces_scalar`] for the SPS closure.
 pub fn fluid_forces<D: Dim, K: Kernel, const VISC: u8, const DIFF: u8>(

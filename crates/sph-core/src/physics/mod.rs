@@ -5,6 +5,8 @@
 pub mod batched;
 pub mod delta_plus;
 pub mod eos;
+#[cfg(feature = "flop-count")]
+pub mod flop_count;
 pub mod forces;
 pub mod kgc;
 pub mod riemann;

@@ -15,10 +15,14 @@ use rayon::prelude::*;
 mod advance;
 mod build;
 mod checkpoint;
+#[cfg(feature = "flop-count")]
+mod flops;
 mod snapshot;
 mod step;
 
 pub use checkpoint::Checkpoint;
+#[cfg(feature = "flop-count")]
+pub use flops::PairFlops;
 pub use snapshot::{Snapshot, SnapshotExchange};
 
 use crate::boundary::WallModel;
@@ -115,6 +119,9 @@ pub trait Simulation: Send + Sync {
     fn fluid_pairs(&self) -> u64;
     /// See [`Solver::force_evaluations_per_step`].
     fn force_evaluations_per_step(&self) -> u32;
+    /// [`Solver::pair_flops`]: the roofline's counts and times (feature `flop-count`).
+    #[cfg(feature = "flop-count")]
+    fn pair_flops(&mut self, repeats: u32) -> Option<PairFlops>;
     fn params(&self) -> Params;
     /// Interpolates fluid fields at flattened `(M, dim)` points.
     fn interpolate(&self, points: &[Real]) -> Result<Interpolated>;
@@ -459,6 +466,10 @@ impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
     }
     fn force_evaluations_per_step(&self) -> u32 {
         Solver::force_evaluations_per_step(self)
+    }
+    #[cfg(feature = "flop-count")]
+    fn pair_flops(&mut self, repeats: u32) -> Option<PairFlops> {
+        Solver::pair_flops(self, repeats)
     }
     fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
