@@ -8,8 +8,9 @@ boundary particles, as DualSPHysics' ``drawbox`` makes), same kernel and ``coefh
 density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsound``, and
 DualSPHysics' precision: its CPU solver forms every pair term in f32 (positions in double, the
 differences rounded to float), so the cases run WaterSim's f32 pair terms
-(``force_precision = "f32"``: offsets formed in f64 and rounded once, sums over lanes in f64, the
-state in f64). ``watersim bench --set force_precision=f64`` times WaterSim's default instead.
+(``force_precision = "f32"``: offsets formed in f32 from positions split for it, about as
+exact as the rounded f64 offset, sums over lanes in f64, the state in f64).
+``watersim bench --set force_precision=f64`` times WaterSim's default instead.
 
 =====================  =========================================================================
 ``dsph-dambreak3d``    ``CaseDambreak``: tank 1.6 x 0.67 x 0.4 m, water 0.4 x 0.67 x 0.3 m at the

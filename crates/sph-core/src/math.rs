@@ -125,6 +125,8 @@ pub trait PairFloat:
     /// from `rho/rho0 - 1`, formed in f64, instead of subtracting two densities near `rho0`).
     const SINGLE: bool;
     fn of(x: Real) -> Self;
+    /// From f32, exactly (the single-precision scan's offsets).
+    fn of_f32(x: f32) -> Self;
     fn to_real(self) -> Real;
     fn sqrt(self) -> Self;
     fn abs(self) -> Self;
@@ -137,6 +139,10 @@ macro_rules! impl_pair_float {
             const SINGLE: bool = $single;
             #[inline(always)]
             fn of(x: Real) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn of_f32(x: f32) -> Self {
                 x as $t
             }
             #[inline(always)]

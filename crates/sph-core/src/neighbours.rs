@@ -66,15 +66,18 @@ fn out_of_reach(d2: Real, near2: &[Real; 2 * MAX_REACH + 1], limit: Real, r: usi
     (below, above)
 }
 
-/// The rows of one stencil: `(first, end)` cell ranges, `n` of them.
+/// The rows of one stencil: `(first, end)` cell ranges, `n` of them, and each row's cell
+/// coordinates along grid axes 1 and 2 (0 along axis 2 in 2D).
 pub struct StencilRows {
     pub n: usize,
     pub cells: [(u32, u32); (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1)],
+    pub across: [[u32; 2]; (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1)],
 }
 
 impl Default for StencilRows {
     fn default() -> Self {
-        Self { n: 0, cells: [(0, 0); (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1)] }
+        const ROWS: usize = (2 * MAX_REACH + 1) * (2 * MAX_REACH + 1);
+        Self { n: 0, cells: [(0, 0); ROWS], across: [[0; 2]; ROWS] }
     }
 }
 
@@ -82,6 +85,7 @@ impl Default for StencilRows {
 pub struct CellGrid<D: Dim> {
     origin: D::V,
     inv_cell: Real,
+    cell_size: Real,
     /// Stencil half-width in cells.
     reach: usize,
     /// Cells along grid axes 0, 1, 2 (see [`axis`]; 1 along axis 2 in 2D).
@@ -131,6 +135,7 @@ impl<D: Dim> CellGrid<D> {
         Self {
             origin: lo,
             inv_cell: 1.0 / cell_size,
+            cell_size,
             reach,
             dims,
             n_cells,
@@ -178,6 +183,31 @@ impl<D: Dim> CellGrid<D> {
     #[inline(always)]
     pub fn has_group(&self, g: usize) -> bool {
         !self.starts[g].is_empty()
+    }
+
+    /// The physical axis of grid axis `k` (see [`axis`]).
+    #[inline(always)]
+    pub fn physical_axis(k: usize) -> usize {
+        axis::<D>(k)
+    }
+
+    /// Where `p` lies along grid axis `k` from the grid's origin [m].
+    #[inline(always)]
+    pub fn along(&self, p: D::V, k: usize) -> Real {
+        p.get(axis::<D>(k)) - self.origin.get(axis::<D>(k))
+    }
+
+    /// The lower face of the cells at coordinate `c` along any axis, from the grid's origin [m].
+    #[inline(always)]
+    pub fn face(&self, c: u32) -> Real {
+        c as Real * self.cell_size
+    }
+
+    /// Where `p` lies along grid axis `k` from the lower face of its cell (the cell it is
+    /// sorted into: clamped to the grid) [m].
+    #[inline(always)]
+    pub fn offset_in_cell(&self, p: D::V, k: usize) -> Real {
+        self.along(p, k) - self.face(self.coord_u32(p, k))
     }
 
     #[inline(always)]
@@ -465,6 +495,7 @@ impl<D: Dim> CellGrid<D> {
                 let (lo, hi) = ((c[0] + below).saturating_sub(r).max(x_lo), (c[0] + r - above).min(x_hi));
                 let row = self.dims[0] * (y + self.dims[1] * z);
                 rows.cells[rows.n] = ((row + lo) as u32, (row + hi + 1) as u32);
+                rows.across[rows.n] = [y as u32, z as u32];
                 rows.n += (d2 < limit) as usize;
             }
         }

@@ -41,6 +41,7 @@ fn fluid_forces_refuses_arrays_that_do_not_cover_the_grid() {
             tau: &[],
             kgc: &[],
             fluid_start: 0,
+            split: None,
         };
         let (mut acc, mut drho) = (vec![V::ZERO; n_out], vec![0.0; n_out]);
         catch_unwind(AssertUnwindSafe(|| {

@@ -185,6 +185,7 @@ mod tests {
             tau: &[],
             kgc: &[],
             fluid_start: 0,
+            split: None,
         };
         let (mut dir, mut normal) = (vec![DVec2::ZERO; pos.len()], vec![DVec2::ZERO; pos.len()]);
         let mut lambda = vec![0.0; pos.len()];
@@ -253,7 +254,7 @@ mod tests {
         grid.sort_group(GROUP_FLUID, nw..n, &pos, &mut perm[nw..], &mut keys[nw..]);
         let pos: Vec<DVec2> = perm.iter().map(|&k| pos[k as usize]).collect();
         let slot_of = |k: usize| perm.iter().position(|&p| p as usize == k).expect("slot") - nw;
-        let f = Fields::<Dim2> { pos: &pos, vel: &vel, rho: &rho, kind: &kind, tau: &[], kgc: &[], fluid_start: nw };
+        let f = Fields::<Dim2> { pos: &pos, vel: &vel, rho: &rho, kind: &kind, tau: &[], kgc: &[], fluid_start: nw, split: None };
         let (mut dir, mut normal) = (vec![DVec2::ZERO; n - nw], vec![DVec2::ZERO; n - nw]);
         let mut lambda = vec![0.0; n - nw];
         delta_plus_fields(&c, &kernel, &grid, f, &mut dir, &mut normal, &mut lambda);

@@ -146,6 +146,10 @@ macro_rules! counted {
                 Counted(x as $t)
             }
             #[inline(always)]
+            fn of_f32(x: f32) -> Self {
+                Counted(x as $t)
+            }
+            #[inline(always)]
             fn to_real(self) -> Real {
                 self.0 as Real
             }

@@ -15,6 +15,7 @@ use crate::neighbours::{CellGrid, GROUPS, GROUP_FLUID};
 use crate::particles::KIND_EXCLUDED;
 use crate::scene::{Diffusion, RiemannSolver, Viscosity};
 use super::riemann::{self, OwnState};
+use super::split_positions::SplitPositions;
 
 /// Calls `f(b, r_ab, r_ab^2, |r_ab|)` for every particle `b != a` of `group` inside the kernel
 /// support of the point `pa`, in the grid's fixed order.
@@ -57,6 +58,10 @@ pub struct Fields<'a, D: Dim> {
     pub kgc: &'a [D::Sym],
     /// First fluid particle.
     pub fluid_start: usize,
+    /// The positions split into f32 pairs for the single-precision candidate scan
+    /// (`split_positions.rs`), up to date; None: a single-precision loop splits them itself,
+    /// into a buffer of its own (the solver passes its own, filled once per evaluation).
+    pub split: Option<&'a SplitPositions>,
 }
 
 /// What the variable time step needs from the force loop (Monaghan & Kos 1999), with the

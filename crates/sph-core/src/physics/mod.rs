@@ -10,6 +10,7 @@ pub mod flop_count;
 pub mod forces;
 pub mod kgc;
 pub mod riemann;
+pub mod split_positions;
 pub mod tensile;
 
 use crate::math::Real;

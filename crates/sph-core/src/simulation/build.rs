@@ -12,6 +12,7 @@ use crate::neighbours::{CellGrid, GROUP_FIXED, GROUP_FLUID, GROUP_MOVING};
 use crate::particles::{Particles, KIND_FIXED, KIND_FLUID, KIND_MOVING, PERMUTE_BLOCK};
 use crate::physics::eos::density_at_pressure;
 use crate::physics::forces::fluid_force_loop;
+use crate::physics::split_positions::SplitPositions;
 use crate::physics::Constants;
 use crate::probes::{GaugeRecord, GaugeSpec};
 use crate::scene::{Integrator, Scene, ShiftingModel, Viscosity};
@@ -95,7 +96,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         // the sort gathers through the fluid accelerations where they hold n values of 8 bytes
         let gather = if n_fluid * D::DIM >= n { Vec::new() } else { vec![0u64; n] };
         let blocks = n.div_ceil(PERMUTE_BLOCK);
-        let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks) };
+        let scratch = Scratch { perm: vec![0; n], gather, ranks: vec![0; blocks], moved: Vec::with_capacity(blocks), split: SplitPositions::default() };
         let walls = wall_model::<D, K>(scene.boundary, if scene.paddle.is_some() { n_moving } else { 0 });
         let fluid_loop = fluid_force_loop::<D, K>(&scene.viscosity, &scene.diffusion, scene.riemann.as_ref(), scene.kernel_correction.is_some());
         let mut solver = Self {

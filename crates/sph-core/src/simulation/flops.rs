@@ -7,7 +7,7 @@ use super::{fields_of, on_pool, Solver};
 use crate::kernel::Kernel;
 use crate::math::{Dim, Vector};
 use crate::physics::flop_count::{self, PairOps};
-use crate::physics::forces::counted_force_loop;
+use crate::physics::forces::{counted_force_loop, Fields};
 
 /// One force evaluation's operations and the time the real loop takes for it.
 #[derive(Clone, Debug)]
@@ -34,7 +34,8 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         // sorts the groups and sets the walls' densities, as a step does before the fluid loop
         self.compute_forces();
         let (c, kernel, grid, fluid_loop) = (self.c, &self.kernel, &self.grid, self.fluid_loop);
-        let fields = fields_of(&self.p, &[]);
+        // the positions split for a single-precision loop, as `compute_forces` left them
+        let fields = Fields { split: c.pair_f32.then_some(&self.scratch.split), ..fields_of(&self.p, &[]) };
         let n = self.p.n_fluid();
         let (mut acc, mut drho) = (vec![D::V::ZERO; n], vec![0.0; n]);
         flop_count::reset();

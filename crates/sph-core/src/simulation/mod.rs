@@ -38,6 +38,7 @@ use crate::probes::{GaugeRecord, ProbeView};
 use crate::threads::with_workers_polling;
 use crate::physics::eos::pressure;
 use crate::physics::forces::{Fields, FluidForceLoop};
+use crate::physics::split_positions::SplitPositions;
 use crate::physics::Constants;
 use crate::scene::{Integrator, Scene, ShiftingModel};
 
@@ -206,6 +207,9 @@ struct Scratch {
     /// Gather buffer of `permute_carried`, shared by all arrays (see there). Empty when the fluid
     /// accelerations are large enough to serve instead (`Solver::sort_group`).
     gather: Vec<u64>,
+    /// The positions split for the single-precision candidate scan; empty in a
+    /// double-precision scene.
+    split: SplitPositions,
 }
 
 pub struct Solver<D: Dim, K: Kernel> {
@@ -315,7 +319,7 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
         if range.is_empty() {
             return;
         }
-        let Scratch { perm, gather, ranks, moved } = &mut self.scratch;
+        let Scratch { perm, gather, ranks, moved, .. } = &mut self.scratch;
         let Particles { pos, vel, rho, id, kind, acc, .. } = &mut self.p;
         // The gather buffer: the fluid accelerations where they are large enough (8 bytes a
         // particle less to hold). They are dead here: every sort comes right before a force
@@ -392,7 +396,7 @@ fn on_pool<R: Send>(op: impl FnOnce() -> R + Send) -> R {
 
 /// The read-only fields of a force or shifting pass over the particles `p`.
 fn fields_of<'a, D: Dim>(p: &'a Particles<D>, tau: &'a [D::Sym]) -> Fields<'a, D> {
-    Fields { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau, kgc: &[], fluid_start: p.fluid_start() }
+    Fields { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau, kgc: &[], fluid_start: p.fluid_start(), split: None }
 }
 
 fn flat<V: Vector>(v: &[V]) -> &[Real] {
@@ -480,7 +484,7 @@ impl<D: Dim, K: Kernel> Simulation for Solver<D, K> {
             History::Verlet { vel_prev, rho_prev, .. } => vel_prev.capacity() * v + rho_prev.capacity() * r,
         };
         let s = &self.scratch;
-        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8 + (s.ranks.capacity() + s.moved.capacity()) * 4;
+        let scratch = s.perm.capacity() * 4 + s.gather.capacity() * 8 + (s.ranks.capacity() + s.moved.capacity()) * 4 + s.split.memory_bytes();
         self.p.memory_bytes()
             + history
             + self.tau.capacity() * size_of::<D::Sym>()

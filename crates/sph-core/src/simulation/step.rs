@@ -74,9 +74,13 @@ impl<D: Dim, K: Kernel> Solver<D, K> {
             let fields = fields_of(&self.p, &[]);
             correction_matrices(&c, &self.kernel, &self.grid, fields, kgc.min_eigenvalue, &mut self.kgc);
         }
+        if c.pair_f32 {
+            self.scratch.split.update(&self.grid, &self.p.pos);
+        }
+        let split = c.pair_f32.then_some(&self.scratch.split);
         // field by field: `drho` and `acc` are borrowed mutably next to them
         let p = &mut self.p;
-        let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, kgc: &self.kgc, fluid_start: fs };
+        let fields = Fields::<D> { pos: &p.pos, vel: &p.vel, rho: &p.rho, kind: &p.kind, tau: &self.tau, kgc: &self.kgc, fluid_start: fs, split };
         let (drho_walls, drho_fluid) = p.drho.split_at_mut(fs);
         let (kernel, grid, fluid_loop) = (&self.kernel, &self.grid, self.fluid_loop);
         let mut fluid = || fluid_loop(&c, kernel, grid, fields, &mut p.acc, drho_fluid);
