@@ -8,8 +8,8 @@ boundary particles, as DualSPHysics' ``drawbox`` makes), same kernel and ``coefh
 density diffusion, boundary condition (DBC), time integrator, CFL and ``coefsound``, and
 DualSPHysics' precision: its CPU solver forms every pair term in f32 (positions in double, the
 differences rounded to float), so the cases run WaterSim's f32 pair terms
-(``force_precision = "f32"``: offsets formed in f32 from positions split for it, about as
-exact as the rounded f64 offset, sums over lanes in f64, the state in f64).
+(``force_precision = "f32"``: offsets formed in f32 from positions split for it, within the
+f32 rounding of a few cells' width, sums over lanes in f64, the state in f64).
 ``watersim bench --set force_precision=f64`` times WaterSim's default instead.
 
 =====================  =========================================================================
